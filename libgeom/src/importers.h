@@ -1,0 +1,30 @@
+// Private: one function per format, called by import.cpp's dispatcher.
+// Each fills `out` (world-space triangles, sources, lights, warnings) or
+// returns false with `error` set to "what is wrong" (the dispatcher prefixes
+// the file name). They must be safe on hostile input: check every count and
+// offset against the bytes before allocating or reading.
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "geom/import.h"
+
+namespace geom::detail {
+
+struct ImportInput {
+  std::string name;      // file name as given (for messages and Scene::files)
+  const unsigned char* data = nullptr;
+  size_t size = 0;
+  std::string base_dir;  // for relative URIs; may be empty
+  ImportOptions options;
+};
+
+bool import_gltf(const ImportInput& in, Scene& out, std::string& error);
+bool import_obj(const ImportInput& in, Scene& out, std::string& error);
+bool import_ply(const ImportInput& in, Scene& out, std::string& error);
+bool import_off(const ImportInput& in, Scene& out, std::string& error);
+bool import_stl(const ImportInput& in, Scene& out, std::string& error);
+bool import_bsp(const ImportInput& in, Scene& out, std::string& error);
+bool import_md3(const ImportInput& in, Scene& out, std::string& error);
+
+}  // namespace geom::detail

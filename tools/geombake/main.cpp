@@ -1,0 +1,50 @@
+// geombake: turns triangle meshes into the static GPU buffers of silhouette-based
+// shadow techniques, and reports on their topology. `geombake --help` lists the
+// subcommands; each prints `Error: FILE: what is wrong` and exits non-zero on bad input.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "geombake/command.h"
+
+namespace geombake {
+
+static std::vector<Command>& registry() {
+  static std::vector<Command> r;
+  return r;
+}
+bool register_command(const Command& command) {
+  registry().push_back(command);
+  return true;
+}
+const std::vector<Command>& commands() { return registry(); }
+
+}  // namespace geombake
+
+static void usage(FILE* f) {
+  std::fprintf(f, "usage: geombake COMMAND [options] FILE...\n\ncommands:\n");
+  for (const auto& c : geombake::commands()) std::fprintf(f, "  %-10s %s\n", c.name, c.summary);
+  std::fprintf(f, "\n`geombake COMMAND --help` for a command's options.\n");
+}
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    usage(argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  for (const auto& c : geombake::commands()) {
+    if (c.name == std::string(argv[1])) {
+      std::vector<std::string> args(argv + 2, argv + argc);
+      try {
+        return c.run(args);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "Error: %s\n", e.what());
+        return 1;
+      }
+    }
+  }
+  std::fprintf(stderr, "Error: unknown command '%s'\n", argv[1]);
+  usage(stderr);
+  return 2;
+}
