@@ -85,7 +85,7 @@ int run_info(const std::vector<std::string>& argv) {
   return failed ? 1 : 0;
 }
 
+GEOMBAKE_COMMAND("info", "print the topology report of each input (--json for machines)", run_info);
+
 }  // namespace
 }  // namespace geombake
-
-GEOMBAKE_COMMAND("info", "print the topology report of each input (--json for machines)", run_info);
