@@ -83,10 +83,11 @@ blocks = []
 for layer in range(8):
     for k in range(3):
         off = (k - 1) * 0.5
-        t = [off, 0.15 + 0.3 * layer, 0] if layer % 2 == 0 else [0, 0.15 + 0.3 * layer, off]
+        y = 0.15 + 0.3 * layer
+        # even layers: long axis along X, side by side in Z; odd layers turned 90 degrees
+        t = [0, y, off] if layer % 2 == 0 else [off, y, 0]
         rot = quat_axis((0, 1, 0), 0 if layer % 2 == 0 else 90)
-        blocks.append(node(name=f"block{layer}_{k}", mesh=0, translation=[t[2], t[1], t[0]] if layer % 2 == 0 else t,
-                           rotation=rot, scale=[1.5, 0.3, 0.48]))
+        blocks.append(node(name=f"block{layer}_{k}", mesh=0, translation=t, rotation=rot, scale=[1.5, 0.3, 0.48]))
 roots.append(node(name="jenga", translation=[-3.0, 0, 0], rotation=quat_axis((0, 1, 0), 20), children=blocks))
 # Two crossed pipes in front of a wall (wall given as a matrix transform).
 p1 = node(name="pipe_a", mesh=1, rotation=quat_axis((0, 0, 1), 35), scale=[4.0, 1, 1])
