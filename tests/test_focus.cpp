@@ -292,6 +292,15 @@ int check_laws(const FrameSetup& s, const FocusResult& r, std::mt19937& rng, con
     if (!ck.in_h(q) && getenv("FOCUS_DEBUG")) {
       for (const auto& h : ck.h_planes)
         std::printf("plane n=(%g %g %g) d=%g excess=%g\n", h.n.x, h.n.y, h.n.z, h.d, dot(h.n, q) - h.d);
+      for (size_t i = 0; i < r.vertex_count(); ++i)
+        std::printf("v%zu %.17g %.17g %.17g\n", i, r.vertices[3 * i], r.vertices[3 * i + 1], r.vertices[3 * i + 2]);
+      size_t b = 0;
+      for (uint32_t n : r.face_sizes) {
+        std::printf("f");
+        for (uint32_t i = 0; i < n; ++i) std::printf(" %u", r.face_indices[b + i]);
+        std::printf("\n");
+        b += n;
+      }
       std::printf("q=%g %g %g V=%zu F=%zu depth=%g near=%g far=%g view=%g %g %g\n", q.x, q.y, q.z, r.vertex_count(),
                   r.face_sizes.size(), dot(ck.view_dir, q - ck.eye), s.near_d, s.far_d, ck.view_dir.x, ck.view_dir.y,
                   ck.view_dir.z);

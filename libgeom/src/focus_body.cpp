@@ -293,7 +293,8 @@ void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std
     if (ri == rj) continue;
     uint32_t big = area[ri] >= area[rj] ? ri : rj, small = big == ri ? rj : ri;
     uint32_t edge_tri = small == ri ? e[2] : uint32_t(t);
-    bool flat = dot(planes[big].n, planes[small].n) > 0 || area[small] == 0;
+    // (No normal test: a sliver's normal is noise; the distances decide.)
+    bool flat = true;
     for (size_t k = 0; k < 3 && flat; ++k)
       flat = std::fabs(planes[big].eval(at(tris[small][k]))) <= 8 * eps &&
              std::fabs(planes[big].eval(at(tris[edge_tri][k]))) <= 8 * eps;
