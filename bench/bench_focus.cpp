@@ -50,15 +50,17 @@ void BM_Focus(benchmark::State& state) {
   Scenario s = make(int(state.range(0)));
   FocusOptions opt;
   opt.method = FocusMethod(state.range(1));
+  opt.faces = state.range(2) != 0;
   FocusResult r;
   size_t i = 0;
   for (auto _ : state) {
     compute_focus(s.cameras[i++ % s.cameras.size()], s.light, s.box, opt, r);
     benchmark::DoNotOptimize(r.matrix[0]);
   }
-  state.SetLabel(std::string(kLights[state.range(0)]) + " " + focus_method_name(opt.method));
+  state.SetLabel(std::string(kLights[state.range(0)]) + " " + focus_method_name(opt.method) +
+                 (opt.faces ? " +faces" : " matrix only"));
 }
-BENCHMARK(BM_Focus)->ArgsProduct({{0, 1, 2}, {0, 1, 2}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Focus)->ArgsProduct({{0, 1, 2}, {0, 1, 2}, {1, 0}})->Unit(benchmark::kMicrosecond);
 
 void BM_FocusStages(benchmark::State& state) {
   Scenario s = make(int(state.range(0)));

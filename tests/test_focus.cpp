@@ -634,6 +634,30 @@ TEST(Focus, CastersAndReceiversTighten) {
   }
 }
 
+// Without faces (an engine's per-frame call) the matrix is the same map.
+TEST(Focus, MatrixOnlyMatchesWithFaces) {
+  FrameSetup s = basic_setup();
+  for (int type = 0; type < 3; ++type) {
+    s.light.type = FocusLightType(type);
+    s.light.position[1] = 12;
+    for (FocusMethod m : kMethods) {
+      FocusOptions with, without;
+      without.faces = false;
+      FocusResult a = run(s, m, with), b = run(s, m, without);
+      EXPECT_EQ(a.method, b.method);
+      EXPECT_TRUE(b.face_sizes.empty());
+      EXPECT_GE(b.vertex_count(), a.vertex_count());
+      for (size_t i = 0; i < a.vertex_count(); ++i) {
+        P3 p{a.vertices[3 * i], a.vertices[3 * i + 1], a.vertices[3 * i + 2]};
+        double ca[3], cb[3], w;
+        shadow_coords(a.matrix, p, ca, w);
+        shadow_coords(b.matrix, p, cb, w);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(ca[k], cb[k], 1e-6);
+      }
+    }
+  }
+}
+
 TEST(Focus, MatricesFromEngineFloatsMatchLookAt) {
   FrameSetup s = basic_setup();
   FocusCamera c = s.camera();

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <exception>
 
@@ -376,7 +377,10 @@ bool hull_planes(PositionSpan points, std::vector<Plane>& out) {
 }
 
 void focus_hull(const Polytope& receivers, V3 light, bool directional, double reach, const Plane* clip,
-                size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch) {
+                size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch,
+                StageTimes* times) {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point t0 = times ? Clock::now() : Clock::time_point();
   out.clear();
   if (receivers.empty()) return;
   unique_vertices(receivers, eps, hull_points);
@@ -396,7 +400,12 @@ void focus_hull(const Polytope& receivers, V3 light, bool directional, double re
     out = receivers;
     return;
   }
+  Clock::time_point t1 = times ? Clock::now() : Clock::time_point();
   clip_polytope(out, clip, clip_count, eps, scratch);
+  if (times) {
+    times->hull += std::chrono::duration<double>(t1 - t0).count();
+    times->clip += std::chrono::duration<double>(Clock::now() - t1).count();
+  }
 }
 
 }  // namespace focus

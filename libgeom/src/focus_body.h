@@ -10,10 +10,21 @@
 #include <vector>
 
 #include "focus_math.h"
+#include "geom/focus.h"
 #include "geom/span.h"
 
 namespace geom {
 namespace focus {
+
+// Seconds spent in each stage of compute_focus, accumulated (for the benchmark).
+struct StageTimes {
+  double setup = 0;      // inputs checked, S and L as half-spaces
+  double receivers = 0;  // R = V n S n L: plane clips of the view frustum
+  double hull = 0;       // CGAL convex hull of R and the light
+  double clip = 0;       // the hull cut by S and L
+  double faces = 0;      // H's faces for the output: CGAL hull of H's vertices, coplanar merge
+  double matrix = 0;     // the light's kind, the shift, the matrix of the method
+};
 
 struct Polytope {
   std::vector<V3> pts;
@@ -57,7 +68,13 @@ bool hull_planes(PositionSpan points, std::vector<Plane>& out);
 // over S, so the extrusion leaves S). `clip` holds the half-spaces of S and L.
 // `hull_points` is working memory. Empty out when H is empty.
 void focus_hull(const Polytope& receivers, V3 light, bool directional, double reach, const Plane* clip,
-                size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch);
+                size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch,
+                StageTimes* times = nullptr);
+
+// compute_focus (geom/focus.h), with the time of each stage added to `times`
+// when it is not null.
+bool compute_focus_staged(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
+                          const FocusOptions& options, FocusResult& out, StageTimes* times);
 
 }  // namespace focus
 }  // namespace geom

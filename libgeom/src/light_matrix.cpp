@@ -24,6 +24,7 @@
 // the fit F that maps H's image onto the unit cube (z flipped for an inverted
 // point light, so the ordinary depth test is right for every light kind).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -556,6 +557,20 @@ const char* focus_fallback_name(FocusFallback f) {
 
 bool compute_focus(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
                    const FocusOptions& options, FocusResult& out) {
+  return compute_focus_staged(camera, light, scene, options, out, nullptr);
+}
+
+bool focus::compute_focus_staged(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
+                                 const FocusOptions& options, FocusResult& out, StageTimes* times) {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point mark = times ? Clock::now() : Clock::time_point();
+  // Adds the time since the last mark to `slot`.
+  auto lap = [&](double StageTimes::*slot) {
+    if (!times) return;
+    Clock::time_point now = Clock::now();
+    times->*slot += std::chrono::duration<double>(now - mark).count();
+    mark = now;
+  };
   M4 id = M4::identity();
   std::copy(id.m, id.m + 16, out.matrix);
   out.method = FocusMethod::Uniform;
@@ -585,6 +600,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       out.light_kind = fr.directional ? LightKind::Directional : LightKind::Point;
     }
     out.psm_light_kind = out.light_kind;
+    lap(&StageTimes::setup);
 
     // R = V n S n L (n receiver bounds).
     V3 corners[8];
@@ -616,6 +632,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       clip_polytope(fr.receivers, near_plane, fr.eps, fr.scratch);
     }
     unique_vertices(fr.receivers, fr.eps, fr.r_verts);
+    lap(&StageTimes::receivers);
     // H = conv(R u {l}) n S n L.
     if (!fr.receivers.empty()) {
       double reach = -HUGE_VAL;
@@ -629,10 +646,11 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       clip.assign(fr.s_planes.begin(), fr.s_planes.end());
       clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
       focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach,
-                 clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch);
+                 clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
     } else {
       fr.body.clear();
     }
+    if (times) mark = Clock::now();  // focus_hull timed itself
     unique_vertices(fr.body, fr.eps, fr.h_verts);
     if (fr.h_verts.empty() || fr.r_verts.empty()) {
       // Nothing visible to shadow. A finite matrix over S n L (or S) all the same.
@@ -658,8 +676,12 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       fr.h_verts.clear();
       return true;
     }
-    index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
-    if (out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
+    if (options.faces) {
+      index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
+    } else {
+      for (V3 p : fr.h_verts) out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
+    }
+    if (options.faces && out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
       fr.h_verts.clear();
       for (size_t i = 0; i + 2 < out.vertices.size(); i += 3)
         fr.h_verts.push_back(V3(out.vertices[i], out.vertices[i + 1], out.vertices[i + 2]));
@@ -668,6 +690,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       for (int k = 0; k < 3; ++k) out.light_axis[k] = fr.light_axis[k];
       out.light_near = fr.light_near;
     }
+    lap(&StageTimes::faces);
 
     M4 m;
     bool done = false;
@@ -686,6 +709,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       done = uniform_matrix(fr, m);
     }
     if (done) std::copy(m.m, m.m + 16, out.matrix);
+    lap(&StageTimes::matrix);
     return true;
   } catch (...) {  // allocation failure: never past the library boundary
     std::copy(id.m, id.m + 16, out.matrix);

@@ -50,11 +50,11 @@
 //     is always finite, whatever the input (non-finite or absurd input gives
 //     the identity and FocusFallback::InvalidInput).
 //
-// Cost: one small CGAL convex hull (exact predicates, inexact constructions)
-// and a few plane clips of a polytope of a few dozen vertices; about 20-40
-// microseconds per light on one core (bench/bench_focus.cpp). No allocation
-// when the same FocusResult is reused frame after frame (vectors keep their
-// capacity).
+// Cost: a small CGAL convex hull (exact predicates, inexact constructions),
+// a few plane clips of a polytope of a few dozen vertices, and, for H's faces,
+// a second hull (FocusOptions::faces); bench/bench_focus.cpp measures each
+// stage. Reusing the same FocusResult frame after frame keeps its vectors'
+// capacity.
 //
 // No exception escapes these functions.
 #pragma once
@@ -127,6 +127,11 @@ struct FocusOptions {
   double lispsm_n_scale = 1.0;
   // Optional receiver bounds: only points inside receive shadows. Tightens R and H.
   const FocusBox* receivers = nullptr;
+  // H's faces (FocusResult::face_sizes / face_indices) for a wireframe: a
+  // second CGAL hull, about half the cost. An engine that needs only the
+  // matrix turns it off; vertices then are H's corners plus, at times, points
+  // in the middle of its edges.
+  bool faces = true;
   // Optional shadow casters: S becomes the convex hull of these points
   // intersected with the scene box (the box alone when empty).
   PositionSpan casters;
