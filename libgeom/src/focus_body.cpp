@@ -14,8 +14,11 @@
 #include "focus_body.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Convex_hull_traits_adapter_2.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_2.h>
 #include <CGAL/convex_hull_3.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <array>
@@ -406,6 +409,78 @@ void focus_hull(const Polytope& receivers, V3 light, bool directional, double re
     times->hull += std::chrono::duration<double>(t1 - t0).count();
     times->clip += std::chrono::duration<double>(Clock::now() - t1).count();
   }
+}
+
+}  // namespace focus
+}  // namespace geom
+
+namespace geom {
+namespace focus {
+
+bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
+                     size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
+                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times) {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point t0 = times ? Clock::now() : Clock::time_point();
+  out.clear();
+  if (r_verts.size() < 3) return false;
+  // R's vertices seen from the light: a 2D frame across the axis.
+  V3 e1 = any_perpendicular(axis), e2 = cross(axis, e1);
+  thread_local std::vector<Kernel::Point_2> flat;
+  thread_local std::vector<size_t> order, ring;
+  flat.clear();
+  order.clear();
+  ring.clear();
+  V3 centre(0, 0, 0);
+  for (size_t i = 0; i < r_verts.size(); ++i) {
+    V3 d = directional ? r_verts[i] : r_verts[i] - light;
+    double depth = directional ? 1.0 : dot(d, axis);
+    if (!(depth > 0)) return false;
+    flat.emplace_back(dot(d, e1) / depth, dot(d, e2) / depth);
+    order.push_back(i);
+    centre = centre + r_verts[i] * (1.0 / double(r_verts.size()));
+  }
+  using Traits = CGAL::Convex_hull_traits_adapter_2<Kernel, CGAL::Pointer_property_map<Kernel::Point_2>::type>;
+  try {
+    CGAL::convex_hull_2(order.begin(), order.end(), std::back_inserter(ring),
+                        Traits(CGAL::make_property_map(flat)));
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (ring.size() < 3) return false;
+  planes.clear();
+  // Planes of R that hold the light (or the whole ray towards it) inside.
+  for (size_t i = 0; i < r_count; ++i) {
+    const Plane& p = r_planes[i];
+    bool keeps = directional ? dot(p.n, axis) >= -1e-12 * length(p.n) : p.eval(light) >= -eps * length(p.n);
+    if (keeps) planes.push_back(p);
+  }
+  // Silhouette planes, oriented towards R's centre. An edge seen end-on from
+  // the light (its two ends project to one point) bounds nothing and has no
+  // well-defined plane: skipped (its neighbours' planes close the cone).
+  double extent = 0;
+  for (size_t k = 0; k < ring.size(); ++k)
+    extent = std::fmax(extent, std::sqrt(CGAL::to_double(CGAL::squared_distance(flat[ring[k]], flat[ring[0]]))));
+  for (size_t k = 0; k < ring.size(); ++k) {
+    size_t i = ring[k], j = ring[(k + 1) % ring.size()];
+    if (std::sqrt(CGAL::to_double(CGAL::squared_distance(flat[i], flat[j]))) <= 1e-7 * extent) continue;
+    V3 a = r_verts[i], b = r_verts[j];
+    V3 n = directional ? cross(b - a, axis) : cross(a - light, b - a);
+    double len = length(n);
+    if (!(len > 0)) continue;
+    Plane p = plane_through(a, n * (1.0 / len));
+    if (p.eval(centre) < 0) p = {-p.n, -p.d};
+    planes.push_back(p);
+  }
+  planes.insert(planes.end(), k_planes, k_planes + k_count);
+  frustum_polytope(box, out);
+  Clock::time_point t1 = times ? Clock::now() : Clock::time_point();
+  clip_polytope(out, planes.data(), planes.size(), eps, scratch);
+  if (times) {
+    times->hull += std::chrono::duration<double>(t1 - t0).count();
+    times->clip += std::chrono::duration<double>(Clock::now() - t1).count();
+  }
+  return true;
 }
 
 }  // namespace focus

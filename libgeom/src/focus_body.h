@@ -71,6 +71,19 @@ void focus_hull(const Polytope& receivers, V3 light, bool directional, double re
                 size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch,
                 StageTimes* times = nullptr);
 
+// H = conv(R u {l}) n K by half-spaces alone (K = S n L, given by `k_planes`,
+// inside the box with corners `box`): conv(R u {l}) is the intersection of
+// the planes of R (`r_planes`, all of them R's supporting planes or
+// redundant) that keep the light on their inner side, and of the planes
+// through the light (or along its direction) and R's silhouette edges. The
+// silhouette is the 2D convex hull, by CGAL (convex_hull_2), of R's vertices
+// projected from the light along `axis` (point: every vertex lies at least a
+// positive distance along it; directional: axis is the light direction).
+// False when the silhouette has no area (the caller falls back to focus_hull).
+bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
+                     size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
+                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times = nullptr);
+
 // compute_focus (geom/focus.h), with the time of each stage added to `times`
 // when it is not null.
 bool compute_focus_staged(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,

@@ -53,7 +53,7 @@ struct Frame {
   V3 light_axis;      // point, spot: the light frustum's axis (unit)
   double light_near = 0;
   // bodies
-  std::vector<Plane> s_planes, l_planes, r_planes, hull_clip;
+  std::vector<Plane> s_planes, l_planes, r_planes, hull_clip, v_planes, hull_clip_planes;
   Polytope receivers, body, scratch;
   std::vector<V3> r_verts, h_verts, hull_points;
   double eps = 0, scale = 1;
@@ -645,8 +645,32 @@ bool focus::compute_focus_staged(const FocusCamera& camera, const FocusLight& li
       std::vector<Plane>& clip = fr.hull_clip;
       clip.assign(fr.s_planes.begin(), fr.s_planes.end());
       clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
-      focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach,
-                 clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
+      // R's candidate planes: V's faces and the receiver bounds.
+      fr.v_planes.clear();
+      V3 vc(0, 0, 0);
+      for (V3 c : corners) vc = vc + c * 0.125;
+      static const int face_corners[6][3] = {{0, 1, 2}, {4, 6, 5}, {0, 3, 7}, {1, 5, 6}, {0, 4, 5}, {3, 2, 6}};
+      for (const auto& f : face_corners) {
+        V3 n = cross(corners[f[1]] - corners[f[0]], corners[f[2]] - corners[f[0]]);
+        if (!(length(n) > 0)) continue;
+        Plane p = plane_through(corners[f[0]], normalize(n));
+        if (p.eval(vc) < 0) p = {-p.n, -p.d};
+        fr.v_planes.push_back(p);
+      }
+      fr.v_planes.insert(fr.v_planes.end(), fr.r_planes.begin(), fr.r_planes.end());
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) lo[k] = -fr.s_planes[2 * k].d, hi[k] = fr.s_planes[2 * k + 1].d;
+      V3 box[8];
+      for (int i = 0; i < 8; ++i) {
+        int b = (i & 3) == 1 || (i & 3) == 2 ? 1 : 0, t = (i & 3) >= 2 ? 1 : 0;  // frustum_polytope's corner order
+        box[i] = V3(b ? hi[0] : lo[0], t ? hi[1] : lo[1], i >= 4 ? lo[2] : hi[2]);
+      }
+      V3 axis = fr.directional ? fr.towards_light : fr.light_axis;
+      if (!focus_by_planes(fr.r_verts, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, axis,
+                           fr.v_planes.data(), fr.v_planes.size(), clip.data(), clip.size(), box, fr.eps,
+                           fr.hull_clip_planes, fr.body, fr.scratch, times))
+        focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach,
+                   clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
     } else {
       fr.body.clear();
     }
