@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <map>
 #include <tuple>
 
@@ -134,9 +135,77 @@ bool esm_corners(const EsmQuad& quad, const float* planes, const float light[4],
   return fa != fb;
 }
 
+namespace {
+
+// Distance from the origin to triangle abc (Ericson, Real-Time Collision
+// Detection 5.1.5, with p = 0).
+double origin_triangle_distance(const double a[3], const double b[3], const double c[3]) {
+  auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  double ab[3], ac[3], ap[3], bp[3], cp[3], q[3];
+  for (int k = 0; k < 3; ++k) ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = -a[k], bp[k] = -b[k], cp[k] = -c[k];
+  auto at = [&](const double* base, const double* dir, double t) {
+    for (int k = 0; k < 3; ++k) q[k] = base[k] + dir[k] * t;
+    return std::sqrt(dot(q, q));
+  };
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return std::sqrt(dot(a, a));
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return std::sqrt(dot(b, b));
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return at(a, ab, d1 / (d1 - d3));
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return std::sqrt(dot(c, c));
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return at(a, ac, d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    double bc[3];
+    for (int k = 0; k < 3; ++k) bc[k] = c[k] - b[k];
+    return at(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const double den = 1 / (va + vb + vc);
+  for (int k = 0; k < 3; ++k) q[k] = a[k] + ab[k] * vb * den + ac[k] * vc * den;
+  return std::sqrt(dot(q, q));
+}
+
+}  // namespace
+
 VolumeMesh finite_volume(const ShadowVolume& v, const float light[4], const double lo[3], const double hi[3],
                          double distance) {
   VolumeMesh mesh;
+  const float* planes = v.planes.data();
+  float q[6][4];
+  const float* base[6];
+  // Where the points at infinity go. Directional light: every corner moves by
+  // the same t = box diagonal + distance, so a far cap is its face translated
+  // beyond the box. Point light: every corner lands on the sphere of radius rho
+  // around the light, rho = (farthest box corner + distance) / c, c the least
+  // distance from the centre to a far cap's triangle of unit directions: then
+  // every far cap (and every far edge) stays `distance` outside the box.
+  const bool point = light[3] != 0.0f;
+  double L[3], reach = 0, diag2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    L[k] = point ? double(light[k]) / light[3] + v.origin[k] : 0.0;
+    const double far_side = std::max(std::fabs(lo[k] - L[k]), std::fabs(hi[k] - L[k]));
+    reach += far_side * far_side;
+    diag2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+  }
+  reach = std::sqrt(reach);
+  auto unit = [](const float c[4], double u[3]) {
+    const double n = std::sqrt(double(c[0]) * c[0] + double(c[1]) * c[1] + double(c[2]) * c[2]);
+    for (int k = 0; k < 3; ++k) u[k] = c[k] / n;
+  };
+  double cmin = 1;
+  if (point)
+    for (const SvCap& c : v.caps) {
+      if (!cap_eval(c, planes, light, q, base)) continue;
+      double u[3][3];
+      for (int i = 0; i < 3; ++i) unit(q[3 + i], u[i]);
+      cmin = std::min(cmin, origin_triangle_distance(u[0], u[1], u[2]));
+    }
+  cmin = std::max(cmin, 1e-3);  // a face seen edge-on from the light (see geom/extrude.h)
+  const double rho = (reach + distance) / cmin, shift = std::sqrt(diag2) + distance;
+
   std::map<std::tuple<double, double, double>, uint32_t> ids;
   auto vertex = [&](const double p[3]) {
     auto key = std::make_tuple(p[0], p[1], p[2]);
@@ -147,48 +216,30 @@ VolumeMesh finite_volume(const ShadowVolume& v, const float light[4], const doub
     ids.emplace(key, id);
     return id;
   };
-  // A corner: near (w = 1) at its position; far (w = 0) on the ray from its
-  // base vertex along its direction, `distance` past the box.
-  auto place = [&](const float c[4], const float base[3], double out[3]) {
+  auto place = [&](const float c[4], const float* b, double out[3]) {
+    double u[3];
     if (c[3] != 0.0f) {
       for (int k = 0; k < 3; ++k) out[k] = double(c[k]) + v.origin[k];
       return;
     }
-    double b[3], d[3], len = 0;
-    for (int k = 0; k < 3; ++k) {
-      b[k] = double(base[k]) + v.origin[k];
-      d[k] = c[k];
-      len += d[k] * d[k];
-    }
-    len = std::sqrt(len);
-    double exit = HUGE_VAL;
-    for (int k = 0; k < 3; ++k) {
-      d[k] /= len;
-      if (d[k] > 0) exit = std::min(exit, (hi[k] - b[k]) / d[k]);
-      if (d[k] < 0) exit = std::min(exit, (lo[k] - b[k]) / d[k]);
-    }
-    if (!(exit > 0) || !std::isfinite(exit)) exit = 0;
-    for (int k = 0; k < 3; ++k) out[k] = b[k] + d[k] * (exit + distance);
+    unit(c, u);
+    for (int k = 0; k < 3; ++k) out[k] = point ? L[k] + u[k] * rho : double(b[k]) + v.origin[k] + u[k] * shift;
   };
-  auto tri = [&](const float (*q)[4], const float* const* base, int a, int b, int c) {
+  auto tri = [&](int a, int b, int c) {
     double p[3][3];
     const int ks[3] = {a, b, c};
     for (int i = 0; i < 3; ++i) place(q[ks[i]], base[ks[i]], p[i]);
     for (int i = 0; i < 3; ++i) mesh.indices.push_back(vertex(p[i]));
   };
-  const float* planes = v.planes.data();
-  float q[6][4];
   for (const SvSide& s : v.sides) {
-    const float* base[6];
     if (!side_eval(s, planes, light, q, base)) continue;
-    tri(q, base, 0, 1, 2);
-    tri(q, base, 2, 1, 3);
+    tri(0, 1, 2);
+    tri(2, 1, 3);
   }
   for (const SvCap& c : v.caps) {
-    const float* base[6];
     if (!cap_eval(c, planes, light, q, base)) continue;
-    tri(q, base, 0, 1, 2);
-    tri(q, base, 3, 4, 5);
+    tri(0, 1, 2);
+    tri(3, 4, 5);
   }
   return mesh;
 }
