@@ -133,13 +133,20 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         ++st.bevel_edges;
       }
     } else {
-      // Boundary or non-manifold: one quad per face, side B its plane flipped;
-      // q in the face's plane, pointing away from the face.
+      // Boundary or non-manifold: each face is a knife edge (its plane and the
+      // same plane flipped, 180 degrees apart), split against the bevel plane
+      // through the edge with normal u, in the face's plane pointing away
+      // from it: two quads, exactly one open for any light off the planes.
       for (uint32_t ef : live) {
         const uint32_t f = ef >> 1;
         const V3 p0 = (ef & 1u) ? v1 : v0, p1 = (ef & 1u) ? v0 : v1;
-        const uint32_t pa = plane_of(f);
-        emit(p0, p1, pa, pa | EsmQuad::kFlip, normalize(cross(p1 - p0, normal(f))));
+        const V3 n = normal(f), u = normalize(cross(p1 - p0, n));
+        const uint32_t pa = plane_of(f), pbev = uint32_t(r.planes.size() / 4);
+        const V3 mid = (p0 + p1) * 0.5;
+        r.planes.insert(r.planes.end(), {float(u.x), float(u.y), float(u.z), float(-dot(u, mid))});
+        emit(p0, p1, pa, pbev, normalize(n + u));
+        emit(p0, p1, pbev, pa | EsmQuad::kFlip, normalize(u - n));
+        ++st.bevel_edges;
       }
     }
     if (r.quads.size() > before) ++st.emitted_edges;
