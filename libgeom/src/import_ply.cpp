@@ -288,7 +288,8 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
       min_bytes += format == Format::Ascii ? 2 : type_size(p.list ? p.count_type : p.type);
     if (el.count > (body.left() + 1) / min_bytes) {
       error = "element '" + el.name + "' (header line " + std::to_string(el.header_line) + ") claims " +
-              std::to_string(el.count) + " entries but only " + std::to_string(body.left()) + " bytes are left";
+              std::to_string(el.count) + " entries of at least " + std::to_string(min_bytes) + " bytes but only " +
+              std::to_string(body.left()) + " bytes are left";
       return false;
     }
     // Role of each property in this element.
