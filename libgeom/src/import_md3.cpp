@@ -140,7 +140,6 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
     }
     at += uint64_t(end_offset);
   }
-  out.source_counts = {{"md3.surfaces", uint64_t(surfaces)}, {"md3.frames", uint64_t(frames)}};
   return true;
 }
 
