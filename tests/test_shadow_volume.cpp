@@ -594,6 +594,7 @@ TEST(ShadowVolume, TinyMeshRecords) {
   b = fixtures::bake(fixtures::box(0, 0, 0, 1, 1, 1));
   EXPECT_EQ(b.topology.edges.size(), 18u);
   EXPECT_EQ(b.volume.stats.skipped_coplanar, 6u);
+  EXPECT_EQ(b.volume.stats.skipped_coplanar_records, 12u);  // double-sided: 2 records each
   EXPECT_EQ(b.volume.stats.pair_edges, 12u);
   EXPECT_EQ(b.volume.sides.size(), 24u);
   EXPECT_EQ(b.volume.caps.size(), 12u);

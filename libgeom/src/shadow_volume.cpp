@@ -95,6 +95,7 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
       const uint32_t fb = (live[0] & 1u) ? live[0] >> 1 : live[1] >> 1;
       if (fp.face_plane[fa] == fp.face_plane[fb]) {
         ++st.skipped_coplanar;
+        st.skipped_coplanar_records += double_sided[fa] ? 2 : 1;
         continue;
       }
       SvSide s;

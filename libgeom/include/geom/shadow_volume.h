@@ -121,6 +121,7 @@ struct ShadowVolumeStats {
   uint64_t pair_edges = 0;         // manifold consistent edges given a pair record
   uint64_t single_records = 0;     // boundary, inconsistent and non-manifold face records
   uint64_t skipped_coplanar = 0;   // pair edges not emitted: shared stored plane
+  uint64_t skipped_coplanar_records = 0;  // the records they would have taken (2 each double-sided)
   uint64_t one_sided_faces = 0;    // faces of closed components, with one_sided_closed
   uint64_t double_sided_faces = 0; // all other non-degenerate faces
   uint64_t degenerate_faces = 0;   // no plane, no cap
