@@ -150,8 +150,10 @@ inline Mesh book(int pages) {
   for (int k = 0; k < pages; ++k) {
     double a = M_PI * (0.1 + 0.8 * k / std::max(1, pages - 1));
     uint32_t p0 = m.add(std::cos(a), std::sin(a), -1), p1 = m.add(std::cos(a), std::sin(a), 1);
-    if (k % 2) m.quad(s0, s1, p1, p0);
-    else m.quad(s0, p0, p1, s1);
+    if (k % 2)
+      m.quad(s0, s1, p1, p0);
+    else
+      m.quad(s0, p0, p1, s1);
   }
   return m;
 }
@@ -162,7 +164,7 @@ inline Mesh bowtie() {
   Mesh m = box(0, 0, 0, 1, 1, 1);
   m.append(box(1, 1, 0, 2, 2, 1));  // shares the edge x = y = 1: 4 faces
   m.append(box(-2, 0, 0, -1, 1, 1));
-  Mesh fin;                         // on the edge x = -1, y = 1: 3 faces
+  Mesh fin;  // on the edge x = -1, y = 1: 3 faces
   uint32_t a = fin.add(-1, 1, 0), b = fin.add(-1, 1, 1), c = fin.add(-0.4, 1.7, 1), d = fin.add(-0.4, 1.7, 0);
   fin.quad(a, b, c, d);
   m.append(fin);
