@@ -206,6 +206,27 @@ inline Mesh degenerate_box() {
   return m;
 }
 
+//   A closed box whose top face holds a sliver: m sits 1e-6 inside edge 4-5
+//   and 1e-7 above the face, so the sliver (4, 5, m) has its own plane, tilted
+//   about 6 degrees, and an area of 1e-6.
+//        7---------6
+//        |  .   .  |
+//        | .     . |
+//        4----m----5
+inline Mesh sliver_box() {
+  Mesh m = box(-1, -1, -1, 1, 1, 1);
+  m.name = "sliver_box";
+  const uint32_t mid = m.add(0, -1 + 1e-6, 1 + 1e-7);
+  // the top face quad(4, 5, 6, 7) is triangles 2 and 3
+  uint32_t* t = &m.indices[3 * 2];
+  t[0] = 4, t[1] = 5, t[2] = mid;
+  t = &m.indices[3 * 3];
+  t[0] = 4, t[1] = mid, t[2] = 7;
+  m.tri(mid, 5, 6);
+  m.tri(mid, 6, 7);
+  return m;
+}
+
 // A scene: several closed and open pieces stacked, so segments cross many faces.
 inline Mesh stack() {
   Mesh m = box(-0.5, 0.2, -0.5, 0.5, 0.6, 0.5);

@@ -92,7 +92,7 @@ TEST(EsmQuads, OpenExactlyForSilhouetteEdges) {
   for (Mesh m :
        {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(14, 8), fixtures::torus(14, 8), fixtures::sheet(6, 0.3),
         fixtures::open_box(), fixtures::book(5), fixtures::bowtie(), fixtures::flipped_box(),
-        fixtures::degenerate_box(), fixtures::stack(), fixtures::sheet(5, 0.0, 7, 1e-7)}) {
+        fixtures::degenerate_box(), fixtures::stack(), fixtures::sheet(5, 0.0, 7, 1e-7), fixtures::sliver_box()}) {
     for (double shift : {0.0, 1e5}) {
       Mesh shifted = m;
       shifted.translate(shift, shift, -shift);

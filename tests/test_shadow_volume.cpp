@@ -385,7 +385,8 @@ std::vector<Mesh> all_meshes() {
           fixtures::flipped_box(),
           fixtures::degenerate_box(),
           fixtures::stack(),
-          fixtures::sheet(5, 0.0, 7, 1e-7)};
+          fixtures::sheet(5, 0.0, 7, 1e-7),
+          fixtures::sliver_box()};
 }
 
 Light shifted(Light l, double s) {
