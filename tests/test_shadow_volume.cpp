@@ -532,6 +532,39 @@ TEST(ShadowVolume, DefaultSceneLights) {
   }
 }
 
+// A real game level (OpenArena's aggressor.bsp, Quake 3 IBSP through the
+// importer): open, non-manifold (edges with up to 4 faces), inconsistent
+// windings, duplicate and collapsed triangles. Lights anywhere in the level.
+TEST(ShadowVolume, Quake3Level) {
+  const std::string map = "/usr/share/games/openarena/baseoa/pak1-maps.pk3:maps/aggressor.bsp";
+  geom::ImportResult r = geom::import_file(map);
+  if (!r.ok && r.error.find("No such file") != std::string::npos) GTEST_SKIP() << r.error;
+  ASSERT_TRUE(r.ok) << r.error;
+  Mesh m;
+  m.name = "aggressor.bsp";
+  m.positions = r.scene.positions;
+  m.indices = r.scene.indices;
+  const fixtures::Baked b = fixtures::bake(m);
+  EXPECT_GT(b.topology.stats.non_manifold_edges, 0u);
+  EXPECT_GT(b.topology.stats.inconsistent_edges, 0u);
+  std::mt19937 rng(2718);
+  std::vector<Light> lights = lights_for(m, rng, false);
+  ASSERT_GT(lights.size(), 6u);
+  LawStats stats;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    check_laws(m, b, lights[i], false, rng, stats, 60);
+    if (::testing::Test::HasFailure()) return;
+    float lf[4];
+    const double wl[4] = {lights[i].xyz[0], lights[i].xyz[1], lights[i].xyz[2], lights[i].w};
+    geom::to_local_light(b.planes.origin, wl, lf);
+    const geom::ShadowVolume lv = geom::build_light_volume(b.volume, lf);
+    check_laws(m, b, lights[i], false, rng, stats, 30, &lv);
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(stats.shadowed, stats.checked / 20);
+  EXPECT_LT(stats.excluded, stats.checked);
+}
+
 // The finite mesh of `geombake volume`: closed as an indexed mesh, and its
 // crossing count equals the infinite volume's inside the scene's bounds.
 TEST(ShadowVolume, FiniteVolumeMatchesInsideBounds) {
