@@ -164,7 +164,7 @@ TEST(ImportObj, CornerFormsAndNegativeIndicesGiveTheSameFaces) {
   const std::string vt = "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n";
   const char* faces[] = {"f 1 2 3 4\n", "f 1/1 2/2 3/3 4/4\n", "f 1//1 2//1 3//1 4//1\n",
                          "f 1/1/1 2/2/1 3/3/1 4/4/1\n", "f -4 -3 -2 -1\n", "f -4/-4/-1 -3/-3/-1 -2//-1 -1\n",
-                         "f\t1   2\t3 4   \n"};
+                         "f\t1   2\t3 4   \n", "f 1 2 3 4 # a quad\n", "f 1 2 3 4#\n"};
   for (const char* f : faces) {
     ImportResult r = load_text("forms.obj", kSquareV + vt + f);
     ASSERT_TRUE(r.ok) << f << r.error;
