@@ -30,6 +30,7 @@ namespace {
 
 const std::string kAssimp = "/usr/share/assimp/models";
 const std::string kDraco = std::string(GEOM_SHARED_DATA) + "/draco";
+const std::string kOpenscad = "/usr/share/openscad";  // Debian's openscad-testing-data: broken STL files
 
 fs::path temp_dir() {
   static fs::path dir = [] {
@@ -771,7 +772,7 @@ bool is_mesh_format(const fs::path& p) {
 
 std::vector<std::string> real_mesh_files() {
   std::vector<std::string> files;
-  for (const std::string& root : {kAssimp, kDraco}) {
+  for (const std::string& root : {kAssimp, kDraco, kOpenscad}) {
     if (!fs::exists(root)) continue;
     for (auto& e : fs::recursive_directory_iterator(root))
       if (e.is_regular_file() && is_mesh_format(e.path())) files.push_back(e.path().string());
@@ -810,6 +811,8 @@ TEST(RealFiles, InvalidAndEdgeCaseFilesLoadOrAreRefusedQuickly) {
                           "OBJ/testpoints.obj", "OBJ/point_cloud.obj", "PLY/points.ply",
                           "STL/triangle_with_empty_solid.stl"})
     files.push_back(kAssimp + "/" + rel);
+  if (fs::exists(kOpenscad + "/testdata/stl"))
+    for (auto& e : fs::directory_iterator(kOpenscad + "/testdata/stl")) files.push_back(e.path().string());
   for (const std::string& f : files) {
     auto t0 = std::chrono::steady_clock::now();
     ImportResult r = import_file(f);
@@ -832,6 +835,13 @@ TEST(RealFiles, InvalidAndEdgeCaseFilesLoadOrAreRefusedQuickly) {
   Report rep;
   analyze(wrap.scene, 0.0f, TopologyOptions(), false, rep);
   EXPECT_GE(rep.stats.max_edge_faces, 4u);
+  if (fs::exists(kOpenscad + "/testdata/stl")) {
+    ImportResult blah = import_file(kOpenscad + "/testdata/stl/invalidvertex.stl");
+    EXPECT_EQ(blah.error, kOpenscad + "/testdata/stl/invalidvertex.stl: line 89: bad vertex coordinate 'blah'");
+    ImportResult four = import_file(kOpenscad + "/testdata/stl/toomanyvertices.stl");  // one facet of 4 corners
+    ASSERT_TRUE(four.ok) << four.error;
+    EXPECT_EQ(four.scene.triangle_count(), 14u);
+  }
   ImportResult delim = import_file(kDraco + "/delim_test.ply");
   ASSERT_TRUE(delim.ok) << delim.error;
   EXPECT_GT(delim.scene.triangle_count(), 0u);
