@@ -189,8 +189,7 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
     out.warnings.push_back(in.name + ": " + std::to_string(lines_points) +
                            " line and point statements (l, p) skipped; only faces are imported");
   if (short_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) +
-                           " faces with fewer than 3 corners skipped");
+    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) + " faces with fewer than 3 corners skipped");
   return true;
 }
 
