@@ -84,11 +84,9 @@ struct Body {
 
   bool read(PlyType t, double& v) {
     if (format == Format::Ascii) {
-      const char* c = reinterpret_cast<const char*>(p);
       const char* e = reinterpret_cast<const char*>(end);
-      std::string_view tok = next_word(c, e);
-      const char* q = tok.data();
-      if (tok.empty() || !scan_double(q, q + tok.size(), v)) return false;
+      const char* c = skip_white(reinterpret_cast<const char*>(p), e);
+      if (c >= e || !scan_double(c, e, v)) return false;
       p = reinterpret_cast<const unsigned char*>(c);
       // Integer types: a whole number within the type's range.
       static const double lo[] = {-128, 0, -32768, 0, -2147483648.0, 0};
