@@ -16,7 +16,7 @@
 //               joins) dropped; lists are kept as written. Modes 0-3 (points,
 //               lines) are skipped with a warning naming file, mesh, primitive.
 //   positions   FLOAT, or (KHR_mesh_quantization) [UNSIGNED_]BYTE/SHORT,
-//               normalised (x/127 clamped to -1, x/255, x/32767, x/65535) or not;
+//               normalised (max(x/127, -1), x/255, max(x/32767, -1), x/65535) or not;
 //               any byteStride; sparse accessors applied here (tinygltf parses
 //               them but does not apply them); an accessor with no bufferView
 //               reads as zeros. Only vertices some triangle uses are emitted.
@@ -25,17 +25,34 @@
 //               buffers and accessors without bounds checks, dereferences a null
 //               attribute for an unknown Draco id and ignores decoding failures.
 //               The extension is removed from the JSON before tinygltf sees it.
-//   lights      KHR_lights_punctual: position = the node's world origin,
-//               direction = its world -Z (normalised), cone angles, range (0 =
-//               infinite), colour, intensity. Out-of-spec values are replaced by
-//               the defaults or clamped, with a warning.
+//   lights      KHR_lights_punctual (read here from the JSON: tinygltf refuses the
+//               whole file for one malformed light): position = the node's world
+//               origin, direction = its world -Z (normalised), cone angles, range
+//               (0 = infinite), colour, intensity. Only lights that nodes of the
+//               scene carry are emitted, once per such node. Out-of-spec values are
+//               replaced by the defaults or clamped, and a light with no known
+//               type or a dangling reference skipped, each with a warning.
+//   indices     UNSIGNED_BYTE/SHORT/INT; every value below the vertex count and
+//               not the primitive restart value (255, 65535, 2^32-1: section 3.7.2.1).
+//               Read here too: tinygltf refuses an indices accessor without a
+//               bufferView (valid glTF: zeros plus sparse values).
+//   buffers     a buffer with no data (no uri outside a GLB's first buffer, e.g. a
+//               placeholder an extension fills, or byteLength 0) is accepted, and
+//               a bufferView that uses it refused. Integers written as 1.0 are
+//               accepted, as the validator does.
+// Every mesh is decoded, also those no node uses, so a broken mesh refuses the
+// file; the output holds the scene's instances only.
 // Ignored: materials, textures, images (never loaded or decoded), animations,
 // skins, morph targets, cameras. They are removed from the JSON handed to
 // tinygltf, so their problems cannot refuse a file whose geometry is sound.
 //
 // Hostile input (all refused with a message, never a crash or a huge allocation):
-//   GLB framing is parsed here, strictly, before tinygltf (whose BIN chunk check
-//   can read 8 bytes past the end); JSON nesting deeper than kMaxJsonDepth (64)
+//   GLB framing is parsed here before tinygltf (whose BIN chunk check can read 8
+//   bytes past the end): a short header, wrong magic or version, a declared
+//   length past the end, a chunk past the end, a first chunk that is not JSON, a
+//   second JSON or BIN chunk, a BIN chunk not in second place are refused (an
+//   unaligned chunk length or bytes after the declared length: a warning); the
+//   GLB handed to tinygltf is rebuilt, well-formed, from the parts. JSON nesting deeper than kMaxJsonDepth (64)
 //   is refused (tinygltf converts extras recursively); every bufferView and
 //   accessor range (sparse parts included) is checked against the bytes the
 //   buffer really holds before anything is read; index values must be below the
@@ -103,7 +120,7 @@ Container split_container(const ImportInput& in, bool glb_extension, std::vector
   Container c;
   bool has_magic = in.size >= 4 && read_u32(in.data) == kGlbMagic;
   if (!has_magic && !glb_extension) {
-    c.json.assign(reinterpret_cast<const char*>(in.data), in.size);
+    if (in.size) c.json.assign(reinterpret_cast<const char*>(in.data), in.size);
     return c;
   }
   c.glb = true;
