@@ -577,6 +577,22 @@ TEST(ImportGltf, HostileReferencesAndRanges) {
   }
   {
     Gltf g = sound_file();
+    std::string text = g.text();
+    text[text.find("base64,") + 9] = '*';
+    auto r = load_text(text, "bad.gltf");
+    EXPECT_FALSE(r.ok);
+    EXPECT_TRUE(contains(r.error, "buffer 0: data URI has a character that is not base64")) << r.error;
+  }
+  {
+    Gltf g = sound_file();
+    Json d = Json::parse(g.text());
+    d["buffers"][0]["uri"] = "data:image/png;base64,AAAA";
+    auto r = load_text(d.dump(), "bad.gltf");
+    EXPECT_FALSE(r.ok);
+    EXPECT_TRUE(contains(r.error, "buffer 0: data URI media type is \"image/png\"")) << r.error;
+  }
+  {
+    Gltf g = sound_file();
     Json d = Json::parse(g.text());
     d["buffers"][0]["uri"] = "no_such_file.bin";
     auto r = load_text(d.dump(), "bad.gltf");
@@ -595,6 +611,25 @@ TEST(ImportGltf, HostileReferencesAndRanges) {
     EXPECT_FALSE(r.ok) << junk;
     EXPECT_TRUE(starts_with(r.error, "junk.gltf: ")) << r.error;
   }
+}
+
+// A percent-encoded (not base64) data URI is a buffer too (RFC 2397).
+TEST(ImportGltf, PercentEncodedDataUri) {
+  Gltf g = sound_file();
+  Json d = Json::parse(g.text());
+  std::string uri = "data:application/gltf-buffer,";
+  char hex[4];
+  for (unsigned char b : g.bin) {
+    std::snprintf(hex, sizeof hex, "%%%02X", b);
+    uri += hex;
+  }
+  d["buffers"][0]["uri"] = uri;
+  auto r = load_text(d.dump());
+  ASSERT_TRUE(r.ok) << r.error;
+  auto base = load_text(g.text());
+  ASSERT_TRUE(base.ok) << base.error;
+  EXPECT_EQ(r.scene.positions, base.scene.positions);
+  EXPECT_EQ(r.scene.indices, base.scene.indices);
 }
 
 // Options bound the output before it is allocated; instancing is counted.

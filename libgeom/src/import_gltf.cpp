@@ -36,7 +36,8 @@
 //               not the primitive restart value (255, 65535, 2^32-1: section 3.7.2.1).
 //               Read here too: tinygltf refuses an indices accessor without a
 //               bufferView (valid glTF: zeros plus sparse values).
-//   buffers     a buffer with no data (no uri outside a GLB's first buffer, e.g. a
+//   buffers     data URIs (base64 or percent-encoded) are decoded here; external
+//               files are read by tinygltf after the checks below. A buffer with no data (no uri outside a GLB's first buffer, e.g. a
 //               placeholder an extension fills, or byteLength 0) is accepted, and
 //               a bufferView that uses it refused. Integers written as 1.0 are
 //               accepted, as the validator does.
@@ -211,6 +212,7 @@ struct SideTable {
   std::map<PrimKey, DracoRef> draco;
   std::map<PrimKey, int> indices;  // primitive -> its indices accessor (absent: not indexed)
   std::vector<char> buffer_has_data;
+  std::map<size_t, std::vector<unsigned char>> data_uri;  // buffer -> bytes decoded here
 };
 
 bool extension_allowed(const std::string& e) {
@@ -251,6 +253,50 @@ std::string url_decode(const std::string& s) {
 std::string join_path(const std::string& dir, const std::string& file) {
   if (dir.empty()) return file;
   return dir.back() == '/' ? dir + file : dir + "/" + file;
+}
+
+// A buffer's data URI (RFC 2397): base64 or percent-encoded, media type
+// application/octet-stream or application/gltf-buffer (glTF 2.0 section 3.6.1.1).
+std::vector<unsigned char> decode_data_uri(const std::string& u, const std::string& name) {
+  const size_t comma = u.find(',');
+  if (comma == std::string::npos) refuse(name + ": data URI has no ','");
+  std::string header = u.substr(5, comma - 5);
+  const bool b64 = header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0;
+  if (b64) header.resize(header.size() - 7);
+  if (header != "application/octet-stream" && header != "application/gltf-buffer")
+    refuse(name + ": data URI media type is \"" + header.substr(0, 60) +
+           "\", not application/octet-stream or application/gltf-buffer");
+  std::vector<unsigned char> out;
+  if (!b64) {
+    std::string decoded = url_decode(u.substr(comma + 1));
+    out.assign(decoded.begin(), decoded.end());
+    return out;
+  }
+  static const std::array<int8_t, 256> table = [] {
+    std::array<int8_t, 256> t;
+    t.fill(-1);
+    const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (int i = 0; i < 64; ++i) t[static_cast<unsigned char>(k[i])] = int8_t(i);
+    return t;
+  }();
+  size_t end = u.size();
+  while (end > comma + 1 && u[end - 1] == '=' && u.size() - end < 2) --end;
+  const size_t n = end - comma - 1;
+  if (n % 4 == 1) refuse(name + ": data URI base64 length is impossible");
+  out.reserve(n / 4 * 3 + 2);
+  uint32_t acc = 0;
+  int bits = 0;
+  for (size_t i = comma + 1; i < end; ++i) {
+    const int v = table[static_cast<unsigned char>(u[i])];
+    if (v < 0) refuse(name + ": data URI has a character that is not base64 at offset " + str(i));
+    acc = (acc << 6) | uint32_t(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<unsigned char>(acc >> bits));
+    }
+  }
+  return out;
 }
 
 bool is_regular_file(const std::string& path, uint64_t* size) {
@@ -308,15 +354,13 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
       if (!uri->is_string()) refuse(name + ": uri is not a string");
       const std::string& u = uri->get_ref<const std::string&>();
       if (u.rfind("data:", 0) == 0) {
-        size_t comma = u.find(',');
-        std::string header = u.substr(0, comma == std::string::npos ? 0 : comma + 1);
-        if (header != "data:application/octet-stream;base64," && header != "data:application/gltf-buffer;base64,")
-          refuse(name + ": data URI is not base64 application/octet-stream or application/gltf-buffer");
-        size_t n = u.size() - header.size();
-        while (n > 0 && u[header.size() + n - 1] == '=') --n;
-        uint64_t decoded = uint64_t(n) * 3 / 4;
-        if (decoded != length)
-          refuse(name + ": its data URI holds " + str(decoded) + " bytes, but byteLength says " + str(length));
+        // Decoded here (tinygltf's base64 decoder looks each character up in a
+        // string, and the JSON handed to it then carries one byte instead).
+        std::vector<unsigned char> bytes = decode_data_uri(u, name);
+        if (bytes.size() != length)
+          refuse(name + ": its data URI holds " + str(bytes.size()) + " bytes, but byteLength says " + str(length));
+        side.data_uri[i] = std::move(bytes);
+        b = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
         continue;
       }
       std::string path = join_path(in.base_dir, url_decode(u));
@@ -1043,6 +1087,8 @@ void import(const ImportInput& in, Scene& out) {
   tinygltf::Model model;
   load_model(c, doc, in, max_bytes, model);
   doc = Json();
+  for (auto& [i, bytes] : side.data_uri)
+    if (i < model.buffers.size()) model.buffers[i].data = std::move(bytes);
 
   validate_ranges(model, side.buffer_has_data);
   std::vector<Instance> nodes = walk_scene(model);
