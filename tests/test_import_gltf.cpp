@@ -776,21 +776,25 @@ Geometry geometry_of(const std::string& path) {
   return kTriangles;
 }
 
-// Validator error codes that make the geometry unusable: data out of bounds,
-// indices out of range, broken GLB framing, node loops. Files reporting any of
-// them must be refused. Left out on purpose:
-//   GLB_CHUNK_LENGTH_UNALIGNED   the chunks still parse exactly (a warning here)
-//   UNRESOLVED_REFERENCE, IO_ERROR  used for materials, images, skins and cameras
-//                                too, which the importer does not read; the
-//                                geometric ones are checked by the tests above
-// ACCESSOR_INDEX_PRIMITIVE_RESTART is in: glTF has no primitive restart, and the
-// restart value (255, 65535, 2^32-1) is out of range for the test's small mesh.
+// Validator error codes that make the geometry unusable or ambiguous: data out
+// of bounds, indices out of range or equal to the primitive restart value (which
+// glTF 2.0 section 3.7.2.1 forbids), buffers shorter than declared or missing,
+// broken GLB framing, node graphs that are not trees. Files reporting any of them
+// must be refused. Left out on purpose:
+//   GLB_CHUNK_LENGTH_UNALIGNED      the chunks still parse exactly (a warning here)
+//   UNRESOLVED_REFERENCE, IO_ERROR  also used for materials, images, skins and
+//                                   cameras, which the importer does not read;
+//                                   the geometric ones (buffer, bufferView,
+//                                   accessor, mesh, node, scene) are refused, as
+//                                   HostileReferencesAndRanges checks
 const std::set<std::string> kGeometryBreaking = {
-    "ACCESSOR_INDEX_PRIMITIVE_RESTART", "ACCESSOR_TOO_LONG", "BUFFER_VIEW_TOO_LONG", "ACCESSOR_INDEX_OOB", "ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE",
-    "BUFFER_BYTE_LENGTH_MISMATCH", "BUFFER_MISSING_GLB_DATA", "NODE_LOOP", "NODE_PARENT_OVERRIDE",
+    "ACCESSOR_TOO_LONG", "BUFFER_VIEW_TOO_LONG", "ACCESSOR_INDEX_OOB", "ACCESSOR_INDEX_PRIMITIVE_RESTART",
+    "ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE", "BUFFER_BYTE_LENGTH_MISMATCH", "BUFFER_MISSING_GLB_DATA",
+    "NODE_LOOP", "NODE_PARENT_OVERRIDE", "SCENE_NON_ROOT_NODE",
     "GLB_CHUNK_TOO_BIG", "GLB_LENGTH_MISMATCH", "GLB_LENGTH_TOO_SMALL", "GLB_UNEXPECTED_END_OF_HEADER",
     "GLB_UNEXPECTED_END_OF_CHUNK_HEADER", "GLB_UNEXPECTED_END_OF_CHUNK_DATA", "GLB_INVALID_MAGIC",
-    "GLB_INVALID_VERSION", "GLB_DUPLICATE_CHUNK", "GLB_UNEXPECTED_FIRST_CHUNK", "GLB_EMPTY_CHUNK"};
+    "GLB_INVALID_VERSION", "GLB_DUPLICATE_CHUNK", "GLB_UNEXPECTED_FIRST_CHUNK", "GLB_UNEXPECTED_BIN_CHUNK",
+    "GLB_EMPTY_CHUNK"};
 
 TEST(ImportGltf, ValidatorSweep) {
   if (!fs::exists(kValidator)) GTEST_SKIP() << kValidator << " missing";
