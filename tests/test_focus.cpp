@@ -429,6 +429,23 @@ TEST(Focus, PointLightOnCameraPlaneIsDirectional) {
   }
 }
 
+// A directional light parallel to the image plane stays directional after
+// the perspective (seed 002, Sect. 3.1: the ideal case, Fig. 3).
+TEST(Focus, DirectionalAcrossViewStaysDirectional) {
+  FrameSetup s = basic_setup();
+  P3 v = unit(P3{s.target[0] - s.eye[0], s.target[1] - s.eye[1], s.target[2] - s.eye[2]});
+  P3 d = unit(cross(v, P3{1, 0, 0}));  // perpendicular to the view direction
+  if (d.y > 0) d = d * -1;              // shining downwards
+  s.light.direction[0] = d.x, s.light.direction[1] = d.y, s.light.direction[2] = d.z;
+  std::mt19937 rng(13);
+  for (FocusMethod m : kMethods) {
+    FocusResult r = run(s, m);
+    EXPECT_EQ(LightKind::Directional, r.light_kind);
+    EXPECT_EQ(m, r.method) << r.reason;
+    EXPECT_GT(check_laws(s, r, rng, focus_method_name(m)), 10);
+  }
+}
+
 TEST(Focus, PointLightInsideViewNeedsCubeMap) {
   FrameSetup s = basic_setup();
   s.light.type = FocusLightType::Point;
