@@ -62,7 +62,8 @@
 // FocusOptions::faces off, 130-215 with H's faces (the 3D hull is most of it).
 // Reusing the same FocusResult frame after frame keeps its vectors' capacity.
 //
-// No exception escapes these functions.
+// No exception escapes these functions. They may run on several threads at
+// once (working memory is per thread).
 #pragma once
 #include <cstdint>
 #include <vector>
