@@ -16,8 +16,9 @@
 // closed by a cap polygon). Measured (bench_focus), this costs a few
 // microseconds where CGAL's 3D quickhull of R and the light (focus_hull, kept
 // as the fallback for a silhouette of no area) costs 60-200.
-// H's faces for the caller (index_polytope) come from CGAL's 3D hull of H's
-// vertices, read from a Surface_mesh (CGAL 5.5's indexed-triangle-set output
+// H's faces for the caller (index_polytope) are the clipped polygons when
+// they close cleanly (checked: no T-junction, no sliver, V - E + F = 2), else
+// CGAL's 3D hull of H's vertices, read from a Surface_mesh (CGAL 5.5's indexed-triangle-set output
 // was seen to return a wrong surface for coplanar points), with coplanar
 // triangles merged by union-find over shared edges so the topology stays
 // closed whatever the tolerance decides.
@@ -238,8 +239,62 @@ void unique_vertices(const Polytope& p, double eps, std::vector<V3>& out) {
   }
 }
 
+// The clipped polygons themselves as the faces, when they already form a
+// clean closed surface: every polygon keeps at least 3 distinct corners and
+// an area above the tolerance, and every directed edge has exactly one
+// reverse twin (no T-junction). False otherwise (the CGAL hull decides).
+static bool index_clipped(const Polytope& p, double eps, std::vector<double>& xyz, std::vector<uint32_t>& sizes,
+                          std::vector<uint32_t>& indices) {
+  thread_local std::vector<V3> verts;
+  thread_local std::vector<std::pair<uint32_t, uint32_t>> directed;
+  verts.clear();
+  directed.clear();
+  size_t base = 0;
+  for (uint32_t n : p.sizes) {
+    size_t start = indices.size();
+    for (uint32_t i = 0; i < n; ++i) {
+      V3 q = p.pts[base + i];
+      uint32_t id = uint32_t(verts.size());
+      for (uint32_t k = 0; k < verts.size(); ++k)
+        if (max_abs(verts[k] - q) <= eps) {
+          id = k;
+          break;
+        }
+      if (id == verts.size()) verts.push_back(q);
+      if (indices.size() > start && (indices.back() == id || indices[start] == id)) continue;
+      indices.push_back(id);
+    }
+    base += n;
+    size_t m = indices.size() - start;
+    if (m < 3) return false;
+    V3 area(0, 0, 0);
+    for (size_t i = 0; i < m; ++i)
+      area = area + cross(verts[indices[start + i]] - verts[indices[start]],
+                          verts[indices[start + (i + 1) % m]] - verts[indices[start]]);
+    double perimeter = 0;
+    for (size_t i = 0; i < m; ++i)
+      perimeter += length(verts[indices[start + (i + 1) % m]] - verts[indices[start + i]]);
+    if (!(0.5 * length(area) > 8 * eps * perimeter)) return false;  // a sliver: no clean face
+    for (size_t i = 0; i < m; ++i) directed.push_back({indices[start + i], indices[start + (i + 1) % m]});
+    sizes.push_back(uint32_t(m));
+  }
+  std::sort(directed.begin(), directed.end());
+  for (size_t i = 0; i < directed.size(); ++i) {
+    if (i + 1 < directed.size() && directed[i] == directed[i + 1]) return false;
+    if (!std::binary_search(directed.begin(), directed.end(), std::make_pair(directed[i].second, directed[i].first)))
+      return false;
+  }
+  if (long(verts.size()) - long(directed.size() / 2) + long(sizes.size()) != 2) return false;
+  for (V3 v : verts) xyz.insert(xyz.end(), {v.x, v.y, v.z});
+  return true;
+}
+
 void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std::vector<uint32_t>& sizes,
                     std::vector<uint32_t>& indices) {
+  xyz.clear();
+  sizes.clear();
+  indices.clear();
+  if (index_clipped(p, eps, xyz, sizes, indices)) return;
   xyz.clear();
   sizes.clear();
   indices.clear();

@@ -54,12 +54,14 @@
 // conv(R u {l}) as half-spaces (R's planes that keep the light inside, and
 // the planes through the light and R's silhouette, which CGAL's 2D convex
 // hull of R seen from the light gives); H by clipping S with those and L's.
-// H's faces come from a CGAL 3D convex hull of its vertices (exact
-// predicates), so they always close (V - E + F = 2).
+// H's faces are the clipped polygons when they form a clean closed surface,
+// else those of a CGAL 3D convex hull of H's vertices (exact predicates);
+// either way they close (V - E + F = 2).
 //
 // Cost (bench/bench_focus.cpp, median CPU time per light per frame on the
-// shared 2-core build machine): about 20-32 microseconds for the matrix with
-// FocusOptions::faces off, 130-215 with H's faces (the 3D hull is most of it).
+// shared, loaded 2-core build machine): about 20-34 microseconds for the
+// matrix alone (FocusOptions::faces off), 25-35 with H's faces; a frame whose
+// faces need the 3D hull costs 100-200 more.
 // Reusing the same FocusResult frame after frame keeps its vectors' capacity.
 //
 // No exception escapes these functions. They may run on several threads at
@@ -134,10 +136,10 @@ struct FocusOptions {
   double lispsm_n_scale = 1.0;
   // Optional receiver bounds: only points inside receive shadows. Tightens R and H.
   const FocusBox* receivers = nullptr;
-  // H's faces (FocusResult::face_sizes / face_indices) for a wireframe: a
-  // second CGAL hull, about half the cost. An engine that needs only the
-  // matrix turns it off; vertices then are H's corners plus, at times, points
-  // in the middle of its edges.
+  // H's faces (FocusResult::face_sizes / face_indices) for a wireframe. An
+  // engine that needs only the matrix turns it off (a few microseconds, and
+  // no 3D hull on the frames whose clipped polygons do not close cleanly).
+  // Vertices are H's corners plus, at times, points in the middle of edges.
   bool faces = true;
   // Optional shadow casters: S becomes the convex hull of these points
   // intersected with the scene box (the box alone when empty).
