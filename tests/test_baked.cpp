@@ -1,0 +1,369 @@
+// Tests of the baked container (geom/baked_reader.h, geom/baked_writer.h).
+//
+// Laws: what is written reads back as the same buffers; the reader refuses
+// every truncation and every single flipped byte of a real baked file, and
+// foreign files; the layout is a pure function of the sections; a failed write
+// leaves no file.
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "geom/baked_reader.h"
+#include "geom/baked_writer.h"
+
+using geom::BakedSection;
+using geom::baked::Format;
+using geom::baked::Reader;
+using geom::baked::SectionType;
+
+namespace {
+
+std::string temp_dir(const std::string& tag) {
+  std::string d = std::string(GEOM_BINARY_DIR) + "/test_baked_tmp/" + tag;
+  std::string cmd = "rm -rf '" + d + "' && mkdir -p '" + d + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  return d;
+}
+
+std::vector<std::string> list_dir(const std::string& dir) {
+  std::vector<std::string> names;
+  if (DIR* d = opendir(dir.c_str())) {
+    while (dirent* e = readdir(d))
+      if (std::strcmp(e->d_name, ".") && std::strcmp(e->d_name, "..")) names.push_back(e->d_name);
+    closedir(d);
+  }
+  return names;
+}
+
+bool exists(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// A few sections of every format, with awkward sizes (not multiples of the alignment).
+std::vector<BakedSection> sample_sections(std::mt19937& rng, int n) {
+  std::vector<BakedSection> out;
+  std::uniform_int_distribution<int> len(0, 70);
+  for (int i = 0; i < n; ++i) {
+    int kind = i % 4;
+    if (kind == 0) {
+      std::vector<float> v(3 * size_t(len(rng)));
+      for (float& x : v) x = std::uniform_real_distribution<float>(-1e6f, 1e6f)(rng);
+      out.push_back(geom::make_baked_section(SectionType::Positions, Format::F32x3, 12, "pos" + std::to_string(i), v));
+    } else if (kind == 1) {
+      std::vector<uint32_t> v(size_t(len(rng)));
+      for (uint32_t& x : v) x = rng();
+      out.push_back(geom::make_baked_section(SectionType::Indices, Format::U32, 4, "idx" + std::to_string(i), v, i));
+    } else if (kind == 2) {
+      std::string text = "{\"n\": " + std::to_string(rng() % 1000) + "}";
+      std::vector<char> v(text.begin(), text.end());
+      out.push_back(geom::make_baked_section(SectionType::TopologyReport, Format::Utf8, 1, "json", v));
+    } else {
+      std::vector<uint32_t> v(7 * size_t(len(rng)));
+      for (uint32_t& x : v) x = rng();
+      out.push_back(geom::make_baked_section(SectionType::EsmVertices, Format::Record, 28, "rec", v));
+    }
+  }
+  return out;
+}
+
+void expect_same(const std::vector<BakedSection>& written, const Reader& r) {
+  ASSERT_EQ(r.sections().size(), written.size());
+  for (size_t i = 0; i < written.size(); ++i) {
+    const auto& w = written[i];
+    const auto& s = r.sections()[i];
+    EXPECT_EQ(s.type, w.type);
+    EXPECT_EQ(s.format, w.format);
+    EXPECT_EQ(s.stride, w.stride);
+    EXPECT_EQ(s.item, w.item);
+    EXPECT_EQ(s.count, w.count);
+    EXPECT_EQ(std::string(s.name), w.name);
+    ASSERT_EQ(s.size, w.bytes.size());
+    EXPECT_EQ(s.offset % r.alignment(), 0u);
+    EXPECT_TRUE(w.bytes.empty() || std::memcmp(s.data, w.bytes.data(), w.bytes.size()) == 0);
+  }
+}
+
+}  // namespace
+
+TEST(Crc32c, KnownValues) {
+  // RFC 3720 (iSCSI) B.4 test vectors and the common check value.
+  EXPECT_EQ(geom::baked::crc32c("123456789", 9), 0xE3069283u);
+  std::vector<unsigned char> zeros(32, 0), ones(32, 0xff), inc(32), dec(32);
+  for (int i = 0; i < 32; ++i) inc[i] = uint8_t(i), dec[i] = uint8_t(31 - i);
+  EXPECT_EQ(geom::baked::crc32c(zeros.data(), 32), 0x8A9136AAu);
+  EXPECT_EQ(geom::baked::crc32c(ones.data(), 32), 0x62A8AB43u);
+  EXPECT_EQ(geom::baked::crc32c(inc.data(), 32), 0x46DD794Eu);
+  EXPECT_EQ(geom::baked::crc32c(dec.data(), 32), 0x113FDB5Cu);
+  EXPECT_EQ(geom::baked::crc32c(nullptr, 0), 0u);
+}
+
+TEST(Crc32c, IncrementalEqualsWhole) {
+  std::mt19937 rng(7);
+  std::vector<unsigned char> data(1000);
+  for (auto& b : data) b = uint8_t(rng());
+  uint32_t whole = geom::baked::crc32c(data.data(), data.size());
+  for (size_t cut = 0; cut <= data.size(); cut += 37) {
+    uint32_t c = geom::baked::crc32c(data.data(), cut);
+    EXPECT_EQ(geom::baked::crc32c(data.data() + cut, data.size() - cut, c), whole) << cut;
+  }
+}
+
+TEST(BakedContainer, RoundTripRandomSections) {
+  std::mt19937 rng(1);
+  for (int trial = 0; trial < 200; ++trial) {
+    auto sections = sample_sections(rng, trial % 9);
+    std::vector<unsigned char> bytes;
+    std::string error;
+    uint32_t alignment = 16u << (trial % 4);
+    ASSERT_TRUE(geom::serialize_baked(sections, bytes, error, alignment)) << error;
+    Reader r;
+    ASSERT_TRUE(r.open(bytes.data(), bytes.size())) << r.error();
+    EXPECT_EQ(r.alignment(), alignment);
+    EXPECT_EQ(r.file_size(), bytes.size());
+    expect_same(sections, r);
+    // The layout is a pure function of the sections.
+    std::vector<unsigned char> again;
+    ASSERT_TRUE(geom::serialize_baked(sections, again, error, alignment));
+    EXPECT_EQ(again, bytes);
+  }
+}
+
+//   An empty container: header only, no section.
+TEST(BakedContainer, EmptyContainer) {
+  std::vector<unsigned char> bytes;
+  std::string error;
+  ASSERT_TRUE(geom::serialize_baked({}, bytes, error)) << error;
+  EXPECT_EQ(bytes.size(), geom::baked::kHeaderSize);
+  Reader r;
+  ASSERT_TRUE(r.open(bytes.data(), bytes.size())) << r.error();
+  EXPECT_TRUE(r.sections().empty());
+  EXPECT_EQ(r.find(SectionType::Positions), nullptr);
+}
+
+TEST(BakedContainer, ZeroCopyTypedView) {
+  std::vector<float> xyz = {0, 1, 2, 3, 4, 5};
+  std::vector<BakedSection> s = {geom::make_baked_section(SectionType::Positions, Format::F32x3, 12, "p", xyz)};
+  std::vector<unsigned char> bytes;
+  std::string error;
+  ASSERT_TRUE(geom::serialize_baked(s, bytes, error));
+  Reader r;
+  ASSERT_TRUE(r.open(bytes.data(), bytes.size()));
+  const auto* p = r.find(SectionType::Positions);
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p->data, bytes.data() + p->offset);  // a view, not a copy
+  struct P3 {
+    float x, y, z;
+  };
+  const P3* v = p->as<P3>();
+  ASSERT_NE(v, nullptr);
+  EXPECT_EQ(v[1].y, 4.0f);
+  EXPECT_EQ(p->as<uint32_t>(), nullptr);  // wrong size for the stride
+}
+
+TEST(BakedContainer, WriterRefusesInconsistentSections) {
+  std::vector<unsigned char> bytes;
+  std::string error;
+  BakedSection s;
+  s.type = SectionType::Indices;
+  s.format = Format::U32;
+  s.stride = 4;
+  s.count = 2;
+  s.bytes.resize(4);  // should be 8
+  s.name = "idx";
+  EXPECT_FALSE(geom::serialize_baked({s}, bytes, error));
+  EXPECT_NE(error.find("count 2"), std::string::npos) << error;
+  s.bytes.resize(8);
+  s.stride = 8;  // not the stride of u32
+  EXPECT_FALSE(geom::serialize_baked({s}, bytes, error));
+  s.stride = 4;
+  s.name = "a_name_that_is_too_long";
+  EXPECT_FALSE(geom::serialize_baked({s}, bytes, error));
+  EXPECT_NE(error.find("name"), std::string::npos) << error;
+  s.name = "tab\there";
+  EXPECT_FALSE(geom::serialize_baked({s}, bytes, error));
+  s.name = "ok";
+  EXPECT_FALSE(geom::serialize_baked({s}, bytes, error, 24));  // alignment not a power of two
+  EXPECT_FALSE(geom::serialize_baked({s}, bytes, error, 8));   // under 16
+  EXPECT_TRUE(geom::serialize_baked({s}, bytes, error)) << error;
+}
+
+// Every truncation and every single flipped byte of a container is refused;
+// flipping a byte back makes it valid again (the test is not vacuous).
+TEST(BakedContainer, RefusesEveryTruncationAndFlippedByte) {
+  std::mt19937 rng(3);
+  auto sections = sample_sections(rng, 6);
+  std::vector<unsigned char> bytes;
+  std::string error;
+  ASSERT_TRUE(geom::serialize_baked(sections, bytes, error)) << error;
+  Reader r;
+  ASSERT_TRUE(r.open(bytes.data(), bytes.size()));
+  for (size_t n = 0; n < bytes.size(); ++n) {
+    std::vector<unsigned char> cut(bytes.begin(), bytes.begin() + n);
+    ASSERT_FALSE(r.open(cut.data(), cut.size())) << "truncated to " << n;
+    EXPECT_FALSE(r.error().empty());
+  }
+  std::vector<unsigned char> longer = bytes;
+  longer.push_back(0);
+  EXPECT_FALSE(r.open(longer.data(), longer.size()));
+  EXPECT_NE(r.error().find("after the end"), std::string::npos) << r.error();
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    for (unsigned char mask : {0x01, 0x80, 0xff}) {
+      bytes[i] ^= mask;
+      ASSERT_FALSE(r.open(bytes.data(), bytes.size())) << "byte " << i << " ^ " << int(mask);
+      bytes[i] ^= mask;
+    }
+  }
+  EXPECT_TRUE(r.open(bytes.data(), bytes.size())) << r.error();
+}
+
+TEST(BakedContainer, ClearErrors) {
+  std::vector<float> xyz(30, 1.0f);
+  std::vector<BakedSection> s = {geom::make_baked_section(SectionType::Positions, Format::F32x3, 12, "positions", xyz)};
+  std::vector<unsigned char> bytes;
+  std::string error;
+  ASSERT_TRUE(geom::serialize_baked(s, bytes, error));
+  Reader r;
+  auto refused = [&](std::vector<unsigned char> b, const char* words) {
+    EXPECT_FALSE(r.open(b.data(), b.size()));
+    EXPECT_NE(r.error().find(words), std::string::npos) << "'" << r.error() << "' lacks '" << words << "'";
+  };
+  refused({}, "empty");
+  refused(std::vector<unsigned char>(bytes.begin(), bytes.begin() + 20), "truncated");
+  refused(std::vector<unsigned char>(bytes.begin(), bytes.end() - 1), "truncated");
+  std::string gltf = "{\"asset\":{\"version\":\"2.0\"}}";
+  refused(std::vector<unsigned char>(gltf.begin(), gltf.end()), "not a geombake baked file");
+  auto b = bytes;
+  b.back() ^= 1;
+  refused(b, "section 0 'positions': checksum mismatch");
+  b = bytes;
+  b[60] ^= 1;
+  refused(b, "header checksum");
+  b = bytes;
+  b[12] = 2;  // major version 2
+  refused(b, "unsupported version 2.0");
+  b = bytes;
+  std::swap(b[8], b[11]);
+  std::swap(b[9], b[10]);
+  refused(b, "big-endian");
+}
+
+// A corrupt table whose checksum was recomputed (as a hostile writer would):
+// the structural checks still refuse it, each with its own message.
+TEST(BakedContainer, StructuralChecksBehindAValidChecksum) {
+  std::vector<uint32_t> idx = {0, 1, 2, 2, 1, 3};
+  std::vector<float> xyz(12, 0.5f);
+  std::vector<BakedSection> s = {geom::make_baked_section(SectionType::Positions, Format::F32x3, 12, "positions", xyz),
+                                 geom::make_baked_section(SectionType::Indices, Format::U32, 4, "indices", idx)};
+  std::vector<unsigned char> bytes;
+  std::string error;
+  ASSERT_TRUE(geom::serialize_baked(s, bytes, error));
+  auto reseal = [](std::vector<unsigned char>& b) {
+    uint32_t n = std::min<uint32_t>(geom::baked::detail::load_u32(b.data() + 24), uint32_t((b.size() - 64) / 64));
+    uint32_t crc = geom::baked::crc32c(b.data(), 60);
+    crc = geom::baked::crc32c(b.data() + 64, size_t(n) * 64, crc);
+    for (int i = 0; i < 4; ++i) b[60 + i] = uint8_t(crc >> (8 * i));
+  };
+  auto put64 = [](std::vector<unsigned char>& b, size_t at, uint64_t v) {
+    for (int i = 0; i < 8; ++i) b[at + i] = uint8_t(v >> (8 * i));
+  };
+  Reader r;
+  auto refused = [&](std::vector<unsigned char> b, const char* words) {
+    reseal(b);
+    EXPECT_FALSE(r.open(b.data(), b.size()));
+    EXPECT_NE(r.error().find(words), std::string::npos) << "'" << r.error() << "' lacks '" << words << "'";
+  };
+  const size_t e0 = 64, e1 = 128;
+  uint64_t off1 = geom::baked::detail::load_u64(bytes.data() + e1 + 24);
+  auto b = bytes;
+  put64(b, e1 + 16, 7);  // count 7 x 4 != 24 bytes
+  refused(b, "is not count 7 x stride 4");
+  b = bytes;
+  put64(b, e1 + 24, off1 + 4);  // misaligned
+  refused(b, "not aligned");
+  b = bytes;
+  put64(b, e1 + 24, 128);  // inside the table
+  refused(b, "overlaps");
+  b = bytes;
+  put64(b, e0 + 24, off1);  // section 0 moved onto section 1
+  refused(b, "");
+  b = bytes;
+  put64(b, e1 + 16, uint64_t(1) << 62);  // count * stride overflows
+  refused(b, "is not count");
+  b = bytes;
+  put64(b, e1 + 32, uint64_t(1) << 40);  // claims a terabyte
+  put64(b, e1 + 16, uint64_t(1) << 38);
+  refused(b, "beyond the end");
+  b = bytes;
+  b[e1 + 4] = 99;  // unknown format
+  refused(b, "unknown element format 99");
+  b = bytes;
+  std::memset(b.data() + e1 + 48, 'x', 16);  // name without NUL
+  refused(b, "not NUL-terminated");
+  b = bytes;
+  b[24] = 0xff;  // section count 255: table beyond the end
+  b[25] = 0xff;
+  refused(b, "");
+  b = bytes;
+  b[28] = 24;  // alignment 24
+  refused(b, "alignment");
+  b = bytes;
+  b[size_t(off1) - 1] = 1;  // a padding byte
+  refused(b, "padding");
+}
+
+TEST(BakedFileWrite, AtomicWriteAndReadBack) {
+  std::string dir = temp_dir("atomic");
+  std::mt19937 rng(5);
+  auto sections = sample_sections(rng, 5);
+  std::string path = dir + "/out.gbake", error;
+  ASSERT_TRUE(geom::write_baked(path, sections, error)) << error;
+  EXPECT_EQ(list_dir(dir), std::vector<std::string>{"out.gbake"});  // no temporary left
+  geom::baked::File f;
+  ASSERT_TRUE(f.load(path)) << f.error();
+  expect_same(sections, f.reader());
+  // Overwriting replaces the whole file.
+  auto fewer = sample_sections(rng, 2);
+  ASSERT_TRUE(geom::write_baked(path, fewer, error)) << error;
+  ASSERT_TRUE(f.load(path)) << f.error();
+  expect_same(fewer, f.reader());
+  EXPECT_EQ(list_dir(dir).size(), 1u);
+}
+
+TEST(BakedFileWrite, FailedWriteLeavesNoFile) {
+  std::string dir = temp_dir("failed");
+  std::string error;
+  std::vector<unsigned char> bytes(100, 1);
+  EXPECT_FALSE(geom::write_file_atomic(dir + "/missing/sub/out.gbake", bytes.data(), bytes.size(), error));
+  EXPECT_NE(error.find("cannot create"), std::string::npos) << error;
+  // The destination is a directory: the rename fails and the temporary is removed.
+  ASSERT_EQ(::mkdir((dir + "/taken").c_str(), 0755), 0);
+  EXPECT_FALSE(geom::write_file_atomic(dir + "/taken", bytes.data(), bytes.size(), error));
+  EXPECT_NE(error.find("rename"), std::string::npos) << error;
+  EXPECT_EQ(list_dir(dir), std::vector<std::string>{"taken"});
+  EXPECT_TRUE(list_dir(dir + "/taken").empty());
+  // An inconsistent section: nothing is written.
+  BakedSection s;
+  s.count = 3;
+  EXPECT_FALSE(geom::write_baked(dir + "/bad.gbake", {s}, error));
+  EXPECT_FALSE(exists(dir + "/bad.gbake"));
+  if (::geteuid() != 0) {  // root writes anywhere
+    ASSERT_EQ(::mkdir((dir + "/ro").c_str(), 0555), 0);
+    EXPECT_FALSE(geom::write_file_atomic(dir + "/ro/out.gbake", bytes.data(), bytes.size(), error));
+    EXPECT_TRUE(list_dir(dir + "/ro").empty());
+  }
+  geom::baked::File f;
+  EXPECT_FALSE(f.load(dir + "/nothing.gbake"));
+  EXPECT_EQ(f.error(), dir + "/nothing.gbake: cannot open file");
+  EXPECT_FALSE(f.load(dir));
+  EXPECT_NE(f.error().find(dir + ": "), std::string::npos);
+}
