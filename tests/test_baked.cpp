@@ -5,20 +5,25 @@
 // foreign files; the layout is a pure function of the sections; a failed write
 // leaves no file.
 #include <dirent.h>
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
-#include <gtest/gtest.h>
-
+#include "geom/atomic_file.h"
+#include "geom/bake.h"
 #include "geom/baked_reader.h"
 #include "geom/baked_writer.h"
+#include "geom/report.h"
+#include "geom/weld.h"
 
 using geom::BakedSection;
 using geom::baked::Format;
@@ -343,11 +348,11 @@ TEST(BakedFileWrite, FailedWriteLeavesNoFile) {
   std::string dir = temp_dir("failed");
   std::string error;
   std::vector<unsigned char> bytes(100, 1);
-  EXPECT_FALSE(geom::write_file_atomic(dir + "/missing/sub/out.gbake", bytes.data(), bytes.size(), error));
+  EXPECT_FALSE(geom::write_file_atomically(dir + "/missing/sub/out.gbake", bytes.data(), bytes.size(), error));
   EXPECT_NE(error.find("cannot create"), std::string::npos) << error;
   // The destination is a directory: the rename fails and the temporary is removed.
   ASSERT_EQ(::mkdir((dir + "/taken").c_str(), 0755), 0);
-  EXPECT_FALSE(geom::write_file_atomic(dir + "/taken", bytes.data(), bytes.size(), error));
+  EXPECT_FALSE(geom::write_file_atomically(dir + "/taken", bytes.data(), bytes.size(), error));
   EXPECT_NE(error.find("rename"), std::string::npos) << error;
   EXPECT_EQ(list_dir(dir), std::vector<std::string>{"taken"});
   EXPECT_TRUE(list_dir(dir + "/taken").empty());
@@ -358,7 +363,7 @@ TEST(BakedFileWrite, FailedWriteLeavesNoFile) {
   EXPECT_FALSE(exists(dir + "/bad.gbake"));
   if (::geteuid() != 0) {  // root writes anywhere
     ASSERT_EQ(::mkdir((dir + "/ro").c_str(), 0555), 0);
-    EXPECT_FALSE(geom::write_file_atomic(dir + "/ro/out.gbake", bytes.data(), bytes.size(), error));
+    EXPECT_FALSE(geom::write_file_atomically(dir + "/ro/out.gbake", bytes.data(), bytes.size(), error));
     EXPECT_TRUE(list_dir(dir + "/ro").empty());
   }
   geom::baked::File f;
@@ -366,4 +371,216 @@ TEST(BakedFileWrite, FailedWriteLeavesNoFile) {
   EXPECT_EQ(f.error(), dir + "/nothing.gbake: cannot open file");
   EXPECT_FALSE(f.load(dir));
   EXPECT_NE(f.error().find(dir + ": "), std::string::npos);
+}
+
+// ---- The bake pipeline (geom/bake.h) ---------------------------------------
+
+namespace {
+
+geom::Scene make_scene(std::vector<float> positions, std::vector<uint32_t> indices) {
+  geom::Scene s;
+  s.positions = std::move(positions);
+  s.indices = std::move(indices);
+  s.sources.resize(s.indices.size() / 3);
+  s.files.push_back("test");
+  return s;
+}
+
+// A tetrahedron whose faces do not share vertices (as UV seams leave it):
+//
+//        3
+//       /|\          faces (outward, counter-clockwise seen from outside):
+//      / | \           0 2 1, 0 1 3, 1 2 3, 2 0 3
+//     /  |  \        12 source vertices, 4 after the weld, closed, genus 0
+//    0---|---2
+//     \  |  /
+//      \ | /
+//        1
+geom::Scene seamed_tetrahedron() {
+  const float c[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  std::vector<float> p;
+  std::vector<uint32_t> idx;
+  for (auto& f : faces)
+    for (int k = 0; k < 3; ++k) {
+      idx.push_back(uint32_t(p.size() / 3));
+      p.insert(p.end(), c[f[k]], c[f[k]] + 3);
+    }
+  return make_scene(p, idx);
+}
+
+// A random soup on a small lattice (so vertices repeat and weld), far from the
+// origin when `offset` is large, with collapsed and duplicate triangles mixed in.
+geom::Scene random_scene(std::mt19937& rng, float offset) {
+  std::uniform_int_distribution<int> coord(0, 3), tris(0, 40);
+  std::vector<float> p;
+  std::vector<uint32_t> idx;
+  int n = tris(rng);
+  for (int t = 0; t < n; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      idx.push_back(uint32_t(p.size() / 3));
+      for (int a = 0; a < 3; ++a) p.push_back(offset + 0.25f * float(coord(rng)));
+    }
+    if (rng() % 8 == 0) idx[idx.size() - 1] = idx[idx.size() - 2];                     // collapsed
+    if (rng() % 8 == 0 && t > 0) idx.insert(idx.end(), idx.end() - 6, idx.end() - 3);  // duplicate
+  }
+  return make_scene(p, idx);
+}
+
+template <class T>
+std::vector<T> values(const geom::baked::Section* s) {
+  std::vector<T> v(s ? s->size / sizeof(T) : 0);
+  if (s && s->size) std::memcpy(v.data(), s->data, s->size);
+  return v;
+}
+
+// Checks what a baked container holds against the scene it came from.
+void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, const std::string& name) {
+  geom::BakeResult r = geom::bake_scene(scene, name, options);
+  ASSERT_TRUE(r.ok) << r.error;
+  std::vector<unsigned char> bytes;
+  std::string error;
+  ASSERT_TRUE(geom::serialize_baked(r.sections, bytes, error)) << error;
+  Reader rd;
+  ASSERT_TRUE(rd.open(bytes.data(), bytes.size())) << rd.error();
+  expect_same(r.sections, rd);
+  geom::WeldResult w = geom::weld(geom::positions_of(scene.positions.data(), scene.vertex_count()),
+                                  scene.indices.data(), scene.indices.size(), options.weld_tolerance);
+  const size_t tc = scene.triangle_count();
+
+  const auto* pos = rd.find(SectionType::Positions);
+  const auto* idx = rd.find(SectionType::Indices);
+  const auto* remap = rd.find(SectionType::WeldRemap);
+  const auto* planes = rd.find(SectionType::FacePlanes);
+  const auto* topo = rd.find(SectionType::TopologyReport);
+  EXPECT_EQ(pos != nullptr, options.positions);
+  EXPECT_EQ(idx != nullptr, options.indices);
+  EXPECT_EQ(remap != nullptr, options.weld_remap);
+  EXPECT_EQ(planes != nullptr, options.face_planes);
+  EXPECT_EQ(topo != nullptr, options.topology_report);
+  if (pos) {
+    EXPECT_EQ(pos->format, Format::F32x3);
+    EXPECT_EQ(values<float>(pos), w.positions);
+  }
+  if (idx) {
+    EXPECT_EQ(idx->count, 3 * tc);
+    EXPECT_EQ(values<uint32_t>(idx), w.indices);
+  }
+  if (remap) {
+    auto m = values<uint32_t>(remap);
+    ASSERT_EQ(m.size(), scene.vertex_count());
+    for (size_t v = 0; v < m.size(); ++v) {  // every source vertex lands on a welded vertex at its position
+      ASSERT_LT(m[v], w.vertex_count());
+      if (options.weld_tolerance == 0)
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(w.positions[3 * m[v] + k], scene.positions[3 * v + k]);
+    }
+    for (size_t i = 0; i < scene.indices.size(); ++i) EXPECT_EQ(m[scene.indices[i]], w.indices[i]);
+  }
+  if (planes) {
+    auto pl = values<float>(planes);
+    ASSERT_EQ(pl.size(), 4 * tc);
+    for (size_t t = 0; t < tc; ++t) {
+      const float* n = &pl[4 * t];
+      double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+      const float* a = &w.positions[3 * size_t(w.indices[3 * t])];
+      const float* b = &w.positions[3 * size_t(w.indices[3 * t + 1])];
+      const float* c = &w.positions[3 * size_t(w.indices[3 * t + 2])];
+      double u[3], v[3];
+      for (int k = 0; k < 3; ++k) u[k] = double(b[k]) - a[k], v[k] = double(c[k]) - a[k];
+      double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      double area2 = std::sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
+      if (area2 == 0) {
+        EXPECT_EQ(len, 0.0) << "triangle " << t;
+        EXPECT_EQ(n[3], 0.0f);
+        continue;
+      }
+      EXPECT_NEAR(len, 1.0, 1e-6) << "triangle " << t;
+      EXPECT_GT(cr[0] * n[0] + cr[1] * n[1] + cr[2] * n[2], 0.0) << "right-hand rule, triangle " << t;
+      double scale = 1.0 + std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]);
+      for (const float* q : {a, b, c})
+        EXPECT_NEAR(double(n[0]) * q[0] + double(n[1]) * q[1] + double(n[2]) * q[2] + n[3], 0.0, 1e-6 * scale)
+            << "vertex on the plane, triangle " << t;
+    }
+  }
+  if (topo) {
+    geom::Report expected;
+    expected.file = name;
+    geom::analyze(scene, options.weld_tolerance, options.topology, false, expected);
+    EXPECT_EQ(std::string(reinterpret_cast<const char*>(topo->data), topo->size), geom::report_json(expected));
+  }
+}
+
+}  // namespace
+
+TEST(Bake, SeamedTetrahedron) {
+  geom::Scene s = seamed_tetrahedron();
+  check_baked(s, {}, "tetra");
+  geom::BakeResult r = geom::bake_scene(s, "tetra");
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.report.stats.vertices, 4u);
+  EXPECT_TRUE(r.report.stats.closed);
+  EXPECT_EQ(r.report.stats.euler_characteristic, 2);
+  ASSERT_EQ(r.sections.size(), 5u);
+  EXPECT_EQ(r.sections[0].count, 4u);   // welded positions
+  EXPECT_EQ(r.sections[1].count, 12u);  // indices
+  EXPECT_EQ(r.sections[2].count, 12u);  // remap
+  // Face 0 (0 2 1) lies in z = 0 and faces -z.
+  std::vector<float> plane(4);
+  std::memcpy(plane.data(), r.sections[3].bytes.data(), 16);
+  EXPECT_EQ(plane, (std::vector<float>{0, 0, -1, 0}));
+}
+
+TEST(Bake, EmptyScene) {
+  geom::Scene s = make_scene({}, {});
+  check_baked(s, {}, "empty");
+}
+
+TEST(Bake, EveryFlagCombination) {
+  geom::Scene s = seamed_tetrahedron();
+  for (int mask = 0; mask < 32; ++mask) {
+    geom::BakeOptions o;
+    o.positions = mask & 1;
+    o.indices = mask & 2;
+    o.weld_remap = mask & 4;
+    o.face_planes = mask & 8;
+    o.topology_report = mask & 16;
+    check_baked(s, o, "tetra");
+  }
+}
+
+TEST(Bake, RandomScenesRoundTrip) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 150; ++trial) {
+    float offset = trial % 3 == 0 ? 0.0f : trial % 3 == 1 ? 1000.0f : -65536.0f;
+    geom::Scene s = random_scene(rng, offset);
+    geom::BakeOptions o;
+    if (trial % 5 == 0) o.weld_tolerance = 0.3f;
+    check_baked(s, o, "random " + std::to_string(trial));
+    if (HasFatalFailure()) return;
+  }
+}
+
+// Byte-identical bakes, run after run and from several threads at once.
+TEST(Bake, Deterministic) {
+  std::mt19937 rng(13);
+  std::vector<geom::Scene> scenes;
+  for (int i = 0; i < 8; ++i) scenes.push_back(random_scene(rng, 10.0f * i));
+  scenes.push_back(seamed_tetrahedron());
+  auto bake_bytes = [](const geom::Scene& s) {
+    std::vector<unsigned char> bytes;
+    std::string error;
+    geom::BakeResult r = geom::bake_scene(s, "same name");
+    EXPECT_TRUE(r.ok && geom::serialize_baked(r.sections, bytes, error)) << r.error << error;
+    return bytes;
+  };
+  std::vector<std::vector<unsigned char>> first(scenes.size());
+  for (size_t i = 0; i < scenes.size(); ++i) first[i] = bake_bytes(scenes[i]);
+  std::vector<std::vector<unsigned char>> threaded(scenes.size());
+  std::vector<std::thread> pool;
+  for (size_t i = 0; i < scenes.size(); ++i) pool.emplace_back([&, i] { threaded[i] = bake_bytes(scenes[i]); });
+  for (auto& t : pool) t.join();
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    EXPECT_EQ(bake_bytes(scenes[i]), first[i]) << i;
+    EXPECT_EQ(threaded[i], first[i]) << i;
+  }
 }

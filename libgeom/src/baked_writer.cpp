@@ -1,14 +1,10 @@
-// The baked container's writer: layout (format in geom/baked_reader.h) and the
-// atomic write (temporary file in the same directory, fsync, rename).
+// The baked container's writer: the layout of geom/baked_reader.h's format.
 #include "geom/baked_writer.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
 #include <cstring>
-#include <system_error>
+#include <new>
+
+#include "geom/atomic_file.h"
 
 namespace geom {
 namespace {
@@ -24,8 +20,6 @@ void store_u64(unsigned char* p, uint64_t v) {
   for (int i = 0; i < 8; ++i) p[i] = uint8_t(v >> (8 * i));
 }
 uint64_t align_up(uint64_t v, uint64_t a) { return (v + a - 1) & ~(a - 1); }
-
-std::string errno_text(int e) { return std::generic_category().message(e); }
 
 bool host_is_little_endian() {
   const uint32_t one = 1;
@@ -111,57 +105,6 @@ bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsi
   return true;
 }
 
-bool write_file_atomic(const std::string& path, const void* data, size_t size, std::string& error) {
-  static std::atomic<uint64_t> counter{0};
-  size_t slash = path.find_last_of('/');
-  std::string dir = slash == std::string::npos ? std::string(".") : path.substr(0, slash == 0 ? 1 : slash);
-  std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
-  if (base.empty()) {
-    error = "output path names a directory";
-    return false;
-  }
-  std::string temp;
-  int fd = -1;
-  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
-    temp = (slash == std::string::npos ? std::string() : path.substr(0, slash + 1)) + "." + base + ".tmp" +
-           std::to_string(uint64_t(getpid())) + "-" + std::to_string(counter++);
-    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && errno != EEXIST) break;
-  }
-  if (fd < 0) {
-    error = "cannot create a file in " + dir + ": " + errno_text(errno);
-    return false;
-  }
-  auto fail = [&](const std::string& what, int e) {
-    if (fd >= 0) ::close(fd);
-    ::unlink(temp.c_str());
-    error = what + ": " + errno_text(e);
-    return false;
-  };
-  const unsigned char* p = static_cast<const unsigned char*>(data);
-  size_t left = size;
-  while (left > 0) {
-    ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return fail("cannot write " + temp, errno);
-    }
-    p += n;
-    left -= size_t(n);
-  }
-  if (::fsync(fd) != 0) return fail("cannot sync " + temp, errno);
-  int rc = ::close(fd);
-  fd = -1;
-  if (rc != 0) return fail("cannot close " + temp, errno);
-  if (::rename(temp.c_str(), path.c_str()) != 0) return fail("cannot rename the temporary file to " + path, errno);
-  int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dfd >= 0) {  // the rename is durable once the directory is synced; best effort
-    ::fsync(dfd);
-    ::close(dfd);
-  }
-  return true;
-}
-
 bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error) {
   std::vector<unsigned char> bytes;
   try {
@@ -170,7 +113,7 @@ bool write_baked(const std::string& path, const std::vector<BakedSection>& secti
     error = "out of memory laying out the baked file";
     return false;
   }
-  return write_file_atomic(path, bytes.data(), bytes.size(), error);
+  return write_file_atomically(path, bytes.data(), bytes.size(), error);
 }
 
 }  // namespace geom

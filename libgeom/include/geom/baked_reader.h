@@ -82,7 +82,7 @@ inline constexpr uint16_t kVersionMajor = 1;
 inline constexpr uint16_t kVersionMinor = 0;
 inline constexpr uint32_t kHeaderSize = 64;
 inline constexpr uint32_t kEntrySize = 64;
-inline constexpr uint32_t kNameSize = 16;   // including the terminating NUL
+inline constexpr uint32_t kNameSize = 16;  // including the terminating NUL
 inline constexpr uint32_t kMaxSections = 1u << 16;
 inline constexpr uint32_t kMinAlignment = 16;
 inline constexpr uint32_t kMaxAlignment = 4096;
@@ -97,23 +97,23 @@ enum class SectionType : uint32_t {
   FacePlanes = 4,      // F32x4 per triangle: unit normal and offset (0,0,0,0 if degenerate)
   TopologyReport = 5,  // Utf8 JSON text
   // Silhouette buffers (geom/bake.h documents their records).
-  EsmVertices = 16,            // extended-shadow-map quad vertices
-  EsmIndices = 17,             // U32, 6 per quad
-  VolumeSideVertices = 32,     // shadow-volume side quad vertices
-  VolumeSideIndices = 33,      // U32
-  VolumeCapVertices = 34,      // shadow-volume cap vertices
-  VolumeCapIndices = 35,       // U32
-  AdjacencyIndices = 48,       // U32, 6 per triangle (GL_TRIANGLES_ADJACENCY)
-  Lights = 64,                 // F32x4 per light: (x, y, z, w), w = 0 directional
-  LightVolumeVertices = 65,    // per light (item = light index)
-  LightVolumeIndices = 66,     // per light (item = light index), U32
+  EsmVertices = 16,          // extended-shadow-map quad vertices
+  EsmIndices = 17,           // U32, 6 per quad
+  VolumeSideVertices = 32,   // shadow-volume side quad vertices
+  VolumeSideIndices = 33,    // U32
+  VolumeCapVertices = 34,    // shadow-volume cap vertices
+  VolumeCapIndices = 35,     // U32
+  AdjacencyIndices = 48,     // U32, 6 per triangle (GL_TRIANGLES_ADJACENCY)
+  Lights = 64,               // F32x4 per light: (x, y, z, w), w = 0 directional
+  LightVolumeVertices = 65,  // per light (item = light index)
+  LightVolumeIndices = 66,   // per light (item = light index), U32
 };
 
 // The element type of a section.
 enum class Format : uint32_t {
-  Bytes = 0,   // opaque bytes, stride 1
-  U32 = 1,     // uint32
-  F32 = 2,     // float
+  Bytes = 0,  // opaque bytes, stride 1
+  U32 = 1,    // uint32
+  F32 = 2,    // float
   F32x2 = 3,
   F32x3 = 4,
   F32x4 = 5,
@@ -124,14 +124,22 @@ enum class Format : uint32_t {
 // Bytes per element of a format; 0 for Record (the entry's stride decides).
 inline constexpr uint32_t format_stride(Format f) {
   switch (f) {
-    case Format::Bytes: return 1;
-    case Format::U32: return 4;
-    case Format::F32: return 4;
-    case Format::F32x2: return 8;
-    case Format::F32x3: return 12;
-    case Format::F32x4: return 16;
-    case Format::Utf8: return 1;
-    case Format::Record: return 0;
+    case Format::Bytes:
+      return 1;
+    case Format::U32:
+      return 4;
+    case Format::F32:
+      return 4;
+    case Format::F32x2:
+      return 8;
+    case Format::F32x3:
+      return 12;
+    case Format::F32x4:
+      return 16;
+    case Format::Utf8:
+      return 1;
+    case Format::Record:
+      return 0;
   }
   return 0;
 }
@@ -140,35 +148,58 @@ inline bool format_known(uint32_t f) { return f <= uint32_t(Format::Record); }
 
 inline const char* format_name(Format f) {
   switch (f) {
-    case Format::Bytes: return "bytes";
-    case Format::U32: return "u32";
-    case Format::F32: return "f32";
-    case Format::F32x2: return "f32x2";
-    case Format::F32x3: return "f32x3";
-    case Format::F32x4: return "f32x4";
-    case Format::Utf8: return "utf8";
-    case Format::Record: return "record";
+    case Format::Bytes:
+      return "bytes";
+    case Format::U32:
+      return "u32";
+    case Format::F32:
+      return "f32";
+    case Format::F32x2:
+      return "f32x2";
+    case Format::F32x3:
+      return "f32x3";
+    case Format::F32x4:
+      return "f32x4";
+    case Format::Utf8:
+      return "utf8";
+    case Format::Record:
+      return "record";
   }
   return "?";
 }
 
 inline const char* type_name(SectionType t) {
   switch (t) {
-    case SectionType::Positions: return "positions";
-    case SectionType::Indices: return "indices";
-    case SectionType::WeldRemap: return "weld_remap";
-    case SectionType::FacePlanes: return "face_planes";
-    case SectionType::TopologyReport: return "topology_report";
-    case SectionType::EsmVertices: return "esm_vertices";
-    case SectionType::EsmIndices: return "esm_indices";
-    case SectionType::VolumeSideVertices: return "volume_side_vertices";
-    case SectionType::VolumeSideIndices: return "volume_side_indices";
-    case SectionType::VolumeCapVertices: return "volume_cap_vertices";
-    case SectionType::VolumeCapIndices: return "volume_cap_indices";
-    case SectionType::AdjacencyIndices: return "adjacency_indices";
-    case SectionType::Lights: return "lights";
-    case SectionType::LightVolumeVertices: return "light_volume_vertices";
-    case SectionType::LightVolumeIndices: return "light_volume_indices";
+    case SectionType::Positions:
+      return "positions";
+    case SectionType::Indices:
+      return "indices";
+    case SectionType::WeldRemap:
+      return "weld_remap";
+    case SectionType::FacePlanes:
+      return "face_planes";
+    case SectionType::TopologyReport:
+      return "topology_report";
+    case SectionType::EsmVertices:
+      return "esm_vertices";
+    case SectionType::EsmIndices:
+      return "esm_indices";
+    case SectionType::VolumeSideVertices:
+      return "volume_side_vertices";
+    case SectionType::VolumeSideIndices:
+      return "volume_side_indices";
+    case SectionType::VolumeCapVertices:
+      return "volume_cap_vertices";
+    case SectionType::VolumeCapIndices:
+      return "volume_cap_indices";
+    case SectionType::AdjacencyIndices:
+      return "adjacency_indices";
+    case SectionType::Lights:
+      return "lights";
+    case SectionType::LightVolumeVertices:
+      return "light_volume_vertices";
+    case SectionType::LightVolumeIndices:
+      return "light_volume_indices";
   }
   return "unknown";
 }

@@ -3,10 +3,10 @@
 // The format is documented at the top of geom/baked_reader.h. serialize_baked()
 // is a pure function of its input: the same sections give the same bytes (no
 // timestamps, no pointers, every padding byte zero), so bakes are reproducible.
-// write_file_atomic() writes to a temporary file in the destination's directory,
-// fsyncs it, renames it over the destination and fsyncs the directory; on any
-// failure it removes the temporary file, so the destination is either the old
-// file (or none) or the complete new one, never a half-written one.
+// write_baked() writes through geom/atomic_file.h (a temporary file in the
+// destination's directory, fsync, rename; on any failure the temporary file is
+// removed), so the destination is either the old file (or none) or the complete
+// new one, never a half-written one.
 // Nothing here throws: errors come back as one line ("what is wrong").
 // The payload bytes are taken as they are: the caller gives them little-endian
 // (native on every host the writer supports; a big-endian host is refused).
@@ -52,10 +52,7 @@ BakedSection make_baked_section(baked::SectionType type, baked::Format format, u
 bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsigned char>& out, std::string& error,
                      uint32_t alignment = baked::kDefaultAlignment);
 
-// Writes `size` bytes to `path` atomically (see above). error: "what is wrong".
-bool write_file_atomic(const std::string& path, const void* data, size_t size, std::string& error);
-
-// serialize_baked + write_file_atomic.
+// serialize_baked, then the atomic write. error: "what is wrong".
 bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error);
 
 }  // namespace geom
