@@ -7,6 +7,7 @@
 #include <random>
 #include <set>
 
+#include "geom/halfedge.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
 
@@ -230,4 +231,24 @@ TEST(Weld, FarFromOriginAndNaN) {
   EXPECT_EQ(w.vertex_count(), 3u);  // NaN vertices never merge
   WeldResult t = weld(positions_of(p.data(), 4), idx.data(), idx.size(), 0.5f);
   EXPECT_EQ(t.vertex_count(), 3u);
+}
+
+// OpenMesh's half-edge view accounts for every face and finds the holes.
+//   3---2---5
+//   | / | / |    2x1 quads strip: one boundary loop; closing it into a
+//   0---1---4    tetrahedron: none; a fin on edge 0-1: one face refused.
+TEST(Halfedge, AccountsForEveryFace) {
+  std::vector<float> p = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0, 2, 1, 0, 0, 0, 1};
+  std::vector<uint32_t> strip = {0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2};
+  HalfedgeSummary s = summarize_halfedges(positions_of(p.data(), 7), strip.data(), 4);
+  EXPECT_EQ(s.added_faces, 4u);
+  EXPECT_EQ(s.boundary_loops, 1u);
+  HalfedgeSummary tet = summarize_halfedges(positions_of(kTetP.data(), 4), kTetI.data(), 4);
+  EXPECT_EQ(tet.boundary_loops, 0u);
+  EXPECT_EQ(tet.added_faces, 4u);
+  std::vector<uint32_t> fin = {0, 1, 2, 1, 0, 3, 0, 1, 6, 3, 3, 1};
+  HalfedgeSummary f = summarize_halfedges(positions_of(p.data(), 7), fin.data(), 4);
+  EXPECT_EQ(f.added_faces + f.refused_faces + f.skipped_faces, 4u);
+  EXPECT_EQ(f.refused_faces, 1u);
+  EXPECT_EQ(f.skipped_faces, 1u);
 }

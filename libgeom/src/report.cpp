@@ -79,6 +79,10 @@ void analyze(const Scene& scene, float weld_tolerance, const TopologyOptions& op
   if (timing)
     report.stages.push_back({"topology", std::chrono::duration<double>(t2 - t1).count(), peak_rss_bytes()});
   report.stats = t.stats;
+  report.halfedge = summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
+                                        scene.triangle_count());
+  if (timing)
+    report.stages.push_back({"halfedge", std::chrono::duration<double>(clock::now() - t2).count(), peak_rss_bytes()});
   report.lights = scene.lights.size();
   report.source_counts = scene.source_counts;
   report.warnings = scene.warnings;
@@ -106,6 +110,8 @@ std::string report_json(const Report& r) {
   num("closed_components", s.closed_components);
   o += std::string(",\"closed\":") + (s.closed ? "true" : "false");
   o += ",\"euler_characteristic\":" + std::to_string(s.euler_characteristic);
+  num("boundary_loops", r.halfedge.boundary_loops);
+  num("openmesh_refused_faces", r.halfedge.refused_faces);
   num("lights", r.lights);
   o += ",\"warnings\":[";
   for (size_t i = 0; i < r.warnings.size(); ++i) o += (i ? ",\"" : "\"") + json_escape(r.warnings[i]) + "\"";
@@ -147,6 +153,7 @@ std::string report_text(const Report& r) {
                 "faces)\n"
                 "  shape       %llu coplanar, %llu convex, %llu concave\n"
                 "  components  %llu (%llu closed); mesh is %s; Euler characteristic %lld\n"
+                "  half-edges  %llu boundary loops; OpenMesh refused %llu faces (complex edges or vertices)\n"
                 "  lights      %llu\n",
                 r.file.c_str(), (unsigned long long)s.triangles, (unsigned long long)s.collapsed_triangles,
                 (unsigned long long)s.zero_area_triangles, (unsigned long long)s.duplicate_triangles,
@@ -155,7 +162,9 @@ std::string report_text(const Report& r) {
                 (unsigned long long)s.non_manifold_edges, s.max_edge_faces, (unsigned long long)s.coplanar_edges,
                 (unsigned long long)s.convex_edges, (unsigned long long)s.concave_edges,
                 (unsigned long long)s.components, (unsigned long long)s.closed_components,
-                s.closed ? "closed" : "open", (long long)s.euler_characteristic, (unsigned long long)r.lights);
+                s.closed ? "closed" : "open", (long long)s.euler_characteristic,
+                (unsigned long long)r.halfedge.boundary_loops, (unsigned long long)r.halfedge.refused_faces,
+                (unsigned long long)r.lights);
   std::string o = buf;
   for (const auto& [group, fields] : group_counts(r.source_counts)) {
     o += "  " + group + ":";

@@ -8,7 +8,8 @@
 //   inconsistent_edges, non_manifold_edges, max_edge_faces, coplanar_edges,
 //   convex_edges, concave_edges, collapsed_triangles, zero_area_triangles,
 //   duplicate_triangles, components, closed_components, closed,
-//   euler_characteristic, lights, warnings (array of strings),
+//   euler_characteristic, boundary_loops and openmesh_refused_faces (OpenMesh's
+//   half-edge view of the same mesh, geom/halfedge.h), lights, warnings (array of strings),
 //   source_faces (BSP only: {"polygon": {"faces": n, "triangles": n}, ...}),
 //   stages (with timing: [{"stage", "seconds", "peak_rss_bytes"}]).
 #pragma once
@@ -17,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "geom/halfedge.h"
 #include "geom/scene.h"
 #include "geom/topology.h"
 
@@ -31,6 +33,7 @@ struct StageTiming {
 struct Report {
   std::string file;
   TopologyStats stats;
+  HalfedgeSummary halfedge;  // OpenMesh's view: boundary loops, refused faces
   uint64_t lights = 0;
   std::vector<std::pair<std::string, uint64_t>> source_counts;  // Scene::source_counts
   std::vector<std::string> warnings;
