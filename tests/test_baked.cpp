@@ -7,6 +7,7 @@
 #include <dirent.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,11 +19,16 @@
 #include <thread>
 #include <vector>
 
+#include "geom/adjacency.h"
 #include "geom/atomic_file.h"
 #include "geom/bake.h"
 #include "geom/baked_reader.h"
 #include "geom/baked_writer.h"
+#include "geom/extrude.h"
+#include "geom/face_planes.h"
 #include "geom/report.h"
+#include "geom/shadow_volume.h"
+#include "geom/silhouette.h"
 #include "geom/weld.h"
 
 using geom::BakedSection;
@@ -75,7 +81,7 @@ std::vector<BakedSection> sample_sections(std::mt19937& rng, int n) {
     } else {
       std::vector<uint32_t> v(7 * size_t(len(rng)));
       for (uint32_t& x : v) x = rng();
-      out.push_back(geom::make_baked_section(SectionType::EsmVertices, Format::Record, 28, "rec", v));
+      out.push_back(geom::make_baked_section(SectionType::EsmQuads, Format::Record, 28, "rec", v));
     }
   }
   return out;
@@ -434,7 +440,18 @@ std::vector<T> values(const geom::baked::Section* s) {
   return v;
 }
 
-// Checks what a baked container holds against the scene it came from.
+template <class T>
+std::vector<unsigned char> bytes_of(const std::vector<T>& v) {
+  const unsigned char* p = reinterpret_cast<const unsigned char*>(v.data());
+  return std::vector<unsigned char>(p, p + v.size() * sizeof(T));
+}
+
+std::vector<unsigned char> bytes_of(const geom::baked::Section* s) {
+  return s ? std::vector<unsigned char>(s->data, s->data + s->size) : std::vector<unsigned char>();
+}
+
+// Bakes `scene`, writes and reads back the container, and checks each section
+// against the scene and against the library stage that makes it.
 void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, const std::string& name) {
   geom::BakeResult r = geom::bake_scene(scene, name, options);
   ASSERT_TRUE(r.ok) << r.error;
@@ -444,20 +461,41 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
   Reader rd;
   ASSERT_TRUE(rd.open(bytes.data(), bytes.size())) << rd.error();
   expect_same(r.sections, rd);
+
+  // The stages, run here on their own.
+  const size_t tc = scene.triangle_count();
   geom::WeldResult w = geom::weld(geom::positions_of(scene.positions.data(), scene.vertex_count()),
                                   scene.indices.data(), scene.indices.size(), options.weld_tolerance);
-  const size_t tc = scene.triangle_count();
+  const geom::PositionSpan welded = geom::positions_of(w.positions.data(), w.vertex_count());
+  geom::Topology topo = geom::build_topology(welded, w.indices.data(), tc, options.topology);
+  std::vector<geom::LightVolume> lights =
+      options.scene_lights ? geom::scene_lights(scene) : std::vector<geom::LightVolume>();
+  for (const auto& l : options.lights) {
+    geom::LightVolume lv;
+    for (int k = 0; k < 4; ++k) lv.light[k] = l[k];
+    lights.push_back(lv);
+  }
+  const bool silhouette = options.esm || options.volume || options.adjacency || !lights.empty();
 
   const auto* pos = rd.find(SectionType::Positions);
   const auto* idx = rd.find(SectionType::Indices);
   const auto* remap = rd.find(SectionType::WeldRemap);
   const auto* planes = rd.find(SectionType::FacePlanes);
-  const auto* topo = rd.find(SectionType::TopologyReport);
+  const auto* topology = rd.find(SectionType::TopologyReport);
   EXPECT_EQ(pos != nullptr, options.positions);
   EXPECT_EQ(idx != nullptr, options.indices);
   EXPECT_EQ(remap != nullptr, options.weld_remap);
   EXPECT_EQ(planes != nullptr, options.face_planes);
-  EXPECT_EQ(topo != nullptr, options.topology_report);
+  EXPECT_EQ(topology != nullptr, options.topology_report);
+  EXPECT_EQ(rd.find(SectionType::Frame) != nullptr, silhouette);
+  EXPECT_EQ(rd.find(SectionType::SilhouetteReport) != nullptr, silhouette);
+  EXPECT_EQ(rd.find(SectionType::EsmQuads) != nullptr, options.esm);
+  EXPECT_EQ(rd.find(SectionType::EsmPlanes) != nullptr, options.esm);
+  EXPECT_EQ(rd.find(SectionType::VolumeSides) != nullptr, options.volume);
+  EXPECT_EQ(rd.find(SectionType::VolumeCaps) != nullptr, options.volume);
+  EXPECT_EQ(rd.find(SectionType::VolumePlanes) != nullptr, options.volume);
+  EXPECT_EQ(rd.find(SectionType::AdjacencyIndices) != nullptr, options.adjacency);
+  EXPECT_EQ(rd.find(SectionType::Lights) != nullptr, !lights.empty());
   if (pos) {
     EXPECT_EQ(pos->format, Format::F32x3);
     EXPECT_EQ(values<float>(pos), w.positions);
@@ -476,37 +514,79 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
     }
     for (size_t i = 0; i < scene.indices.size(); ++i) EXPECT_EQ(m[scene.indices[i]], w.indices[i]);
   }
+  geom::FacePlanes fp = geom::compute_face_planes(welded, w.indices.data(), tc, topo, options.planes);
   if (planes) {
+    // Each face's stored plane, moved to input coordinates: unit normal by the
+    // right-hand rule, the face's vertices on it (within the coplanar grouping's
+    // tolerance, relative to the bounds diagonal, plus float rounding).
     auto pl = values<float>(planes);
     ASSERT_EQ(pl.size(), 4 * tc);
     for (size_t t = 0; t < tc; ++t) {
       const float* n = &pl[4 * t];
       double len = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+      if (fp.face_plane[t] == geom::FacePlanes::kNone) {
+        EXPECT_EQ(len, 0.0) << "degenerate triangle " << t;
+        EXPECT_EQ(n[3], 0.0f);
+        continue;
+      }
       const float* a = &w.positions[3 * size_t(w.indices[3 * t])];
       const float* b = &w.positions[3 * size_t(w.indices[3 * t + 1])];
       const float* c = &w.positions[3 * size_t(w.indices[3 * t + 2])];
       double u[3], v[3];
       for (int k = 0; k < 3; ++k) u[k] = double(b[k]) - a[k], v[k] = double(c[k]) - a[k];
       double cr[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-      double area2 = std::sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
-      if (area2 == 0) {
-        EXPECT_EQ(len, 0.0) << "triangle " << t;
-        EXPECT_EQ(n[3], 0.0f);
-        continue;
-      }
       EXPECT_NEAR(len, 1.0, 1e-6) << "triangle " << t;
       EXPECT_GT(cr[0] * n[0] + cr[1] * n[1] + cr[2] * n[2], 0.0) << "right-hand rule, triangle " << t;
       double scale = 1.0 + std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]);
+      double tolerance = 2 * options.planes.coplanar_distance * fp.diagonal + 1e-6 * scale;
       for (const float* q : {a, b, c})
-        EXPECT_NEAR(double(n[0]) * q[0] + double(n[1]) * q[1] + double(n[2]) * q[2] + n[3], 0.0, 1e-6 * scale)
+        EXPECT_NEAR(double(n[0]) * q[0] + double(n[1]) * q[1] + double(n[2]) * q[2] + n[3], 0.0, tolerance)
             << "vertex on the plane, triangle " << t;
     }
   }
-  if (topo) {
+  if (topology) {
     geom::Report expected;
     expected.file = name;
     geom::analyze(scene, options.weld_tolerance, options.topology, false, expected);
-    EXPECT_EQ(std::string(reinterpret_cast<const char*>(topo->data), topo->size), geom::report_json(expected));
+    EXPECT_EQ(std::string(reinterpret_cast<const char*>(topology->data), topology->size), geom::report_json(expected));
+  }
+  if (!silhouette) return;
+  EXPECT_EQ(values<double>(rd.find(SectionType::Frame)), std::vector<double>(fp.origin, fp.origin + 3));
+  const auto* report = rd.find(SectionType::SilhouetteReport);
+  ASSERT_NE(report, nullptr);
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(report->data), report->size), r.silhouette);
+  if (options.esm) {
+    geom::EsmQuads esm = geom::build_esm_quads(welded, w.indices.data(), tc, topo, fp, options.esm_options);
+    EXPECT_EQ(rd.find(SectionType::EsmQuads)->stride, 36u);
+    EXPECT_EQ(bytes_of(rd.find(SectionType::EsmQuads)), bytes_of(esm.quads));
+    EXPECT_EQ(bytes_of(rd.find(SectionType::EsmPlanes)), bytes_of(esm.planes));
+  }
+  geom::ShadowVolume volume = geom::build_shadow_volume(welded, w.indices.data(), tc, topo, fp);
+  if (options.volume) {
+    EXPECT_EQ(rd.find(SectionType::VolumeSides)->stride, 32u);
+    EXPECT_EQ(rd.find(SectionType::VolumeCaps)->stride, 40u);
+    EXPECT_EQ(bytes_of(rd.find(SectionType::VolumeSides)), bytes_of(volume.sides));
+    EXPECT_EQ(bytes_of(rd.find(SectionType::VolumeCaps)), bytes_of(volume.caps));
+    EXPECT_EQ(bytes_of(rd.find(SectionType::VolumePlanes)), bytes_of(volume.planes));
+  }
+  if (options.adjacency) {
+    std::vector<uint32_t> adj(geom::adjacency_index_count(tc));
+    ASSERT_TRUE(geom::build_adjacency(adj.data(), w.indices.data(), tc, w.vertex_count()));
+    EXPECT_EQ(values<uint32_t>(rd.find(SectionType::AdjacencyIndices)), adj);
+  }
+  if (!lights.empty()) {
+    auto table = values<double>(rd.find(SectionType::Lights));
+    ASSERT_EQ(table.size(), 4 * lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(table[4 * i + k], lights[i].light[k]);
+      float local[4];
+      geom::to_local_light(fp.origin, lights[i].light, local);
+      geom::ShadowVolume lv = geom::build_light_volume(volume, local);
+      EXPECT_EQ(bytes_of(rd.find(SectionType::LightSides, uint32_t(i))), bytes_of(lv.sides)) << "light " << i;
+      EXPECT_EQ(bytes_of(rd.find(SectionType::LightCaps, uint32_t(i))), bytes_of(lv.caps)) << "light " << i;
+      EXPECT_EQ(bytes_of(rd.find(SectionType::LightPlanes, uint32_t(i))), bytes_of(lv.planes)) << "light " << i;
+    }
+    EXPECT_EQ(rd.find(SectionType::LightSides, uint32_t(lights.size())), nullptr);
   }
 }
 
@@ -520,7 +600,12 @@ TEST(Bake, SeamedTetrahedron) {
   EXPECT_EQ(r.report.stats.vertices, 4u);
   EXPECT_TRUE(r.report.stats.closed);
   EXPECT_EQ(r.report.stats.euler_characteristic, 2);
-  ASSERT_EQ(r.sections.size(), 5u);
+  std::vector<std::string> names;
+  for (const auto& sec : r.sections) names.push_back(sec.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"positions", "indices", "weld_remap", "face_planes", "topology", "frame",
+                                             "esm_quads", "esm_planes", "volume_sides", "volume_caps", "volume_planes",
+                                             "adjacency", "silhouette"}));
+  ASSERT_EQ(r.sections.size(), 13u);
   EXPECT_EQ(r.sections[0].count, 4u);   // welded positions
   EXPECT_EQ(r.sections[1].count, 12u);  // indices
   EXPECT_EQ(r.sections[2].count, 12u);  // remap
@@ -528,6 +613,7 @@ TEST(Bake, SeamedTetrahedron) {
   std::vector<float> plane(4);
   std::memcpy(plane.data(), r.sections[3].bytes.data(), 16);
   EXPECT_EQ(plane, (std::vector<float>{0, 0, -1, 0}));
+  EXPECT_EQ(r.sections[11].count, 24u);  // 6 adjacency indices per triangle
 }
 
 TEST(Bake, EmptyScene) {
@@ -537,15 +623,38 @@ TEST(Bake, EmptyScene) {
 
 TEST(Bake, EveryFlagCombination) {
   geom::Scene s = seamed_tetrahedron();
-  for (int mask = 0; mask < 32; ++mask) {
+  s.lights.resize(1);  // a point light above the tetrahedron
+  s.lights[0].position[2] = 3;
+  for (int mask = 0; mask < 512; ++mask) {
     geom::BakeOptions o;
     o.positions = mask & 1;
     o.indices = mask & 2;
     o.weld_remap = mask & 4;
     o.face_planes = mask & 8;
     o.topology_report = mask & 16;
+    o.esm = mask & 32;
+    o.volume = mask & 64;
+    o.adjacency = mask & 128;
+    o.scene_lights = mask & 256;
     check_baked(s, o, "tetra");
+    if (HasFatalFailure()) return;
   }
+}
+
+TEST(Bake, LightsGiven) {
+  geom::Scene s = seamed_tetrahedron();
+  geom::BakeOptions o;
+  o.lights = {{2, 3, 4, 1}, {0, 0, 1, 0}, {-1, -1, -1, 1}};
+  check_baked(s, o, "tetra");
+  geom::BakeResult r = geom::bake_scene(s, "tetra", o);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_NE(r.silhouette.find("\"name\":\"--light 3\""), std::string::npos) << r.silhouette;
+  o.lights = {{0, 0, 0, 0}};
+  r = geom::bake_scene(s, "tetra", o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error, "tetra: light '--light 1' is not a usable (x, y, z, w): non-finite or all zero");
+  o.lights = {{1, std::nan(""), 0, 1}};
+  EXPECT_FALSE(geom::bake_scene(s, "tetra", o).ok);
 }
 
 TEST(Bake, RandomScenesRoundTrip) {
@@ -583,4 +692,208 @@ TEST(Bake, Deterministic) {
     EXPECT_EQ(bake_bytes(scenes[i]), first[i]) << i;
     EXPECT_EQ(threaded[i], first[i]) << i;
   }
+}
+
+// ---- Real files, and the geombake CLI ---------------------------------------
+
+namespace {
+
+const std::string kBoxObj = "/usr/share/assimp/models/OBJ/box.obj";
+const std::string kDracoBox = std::string(GEOM_SHARED_DATA) + "/draco/Box/glTF/Box.gltf";
+
+std::vector<unsigned char> read_bytes(const std::string& path) {
+  std::vector<unsigned char> bytes;
+  std::string error;
+  EXPECT_TRUE(geom::baked::read_file(path, bytes, error)) << path << ": " << error;
+  return bytes;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  FILE* f = std::fopen(path.c_str(), "wb");
+  ASSERT_NE(f, nullptr) << path;
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fclose(f);
+}
+
+struct Run {
+  int status = -1;
+  std::string out, err;
+};
+
+// Runs geombake with `args` (already shell-quoted), capturing stdout and stderr.
+Run geombake(const std::string& dir, const std::string& args) {
+  Run r;
+  std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
+  int rc = std::system((std::string(GEOMBAKE_EXE) + " " + args + " >'" + out + "' 2>'" + err + "'").c_str());
+  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  auto slurp = [](const std::string& p) {
+    std::vector<unsigned char> b;
+    std::string e;
+    geom::baked::read_file(p, b, e);
+    ::unlink(p.c_str());
+    return std::string(b.begin(), b.end());
+  };
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+// The tetrahedron of seamed_tetrahedron() as OBJ text, moved by `dx`.
+std::string tetra_obj(float dx) {
+  std::string s;
+  const float c[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (auto& v : c)
+    s += "v " + std::to_string(v[0] + dx) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
+  return s + "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+}
+
+}  // namespace
+
+// A real file, baked through the library: it reads back as the buffers of its
+// scene, and every truncation and every flipped byte of it is refused.
+TEST(BakeRealFile, BoxObjRoundTripTruncationsAndFlips) {
+  std::string dir = temp_dir("real");
+  std::string out = dir + "/box.gbake";
+  geom::BakeResult r = geom::bake_file(kBoxObj, out);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.report.stats.triangles, 12u);
+  EXPECT_EQ(r.report.stats.vertices, 8u);
+  EXPECT_TRUE(r.report.stats.closed);
+  geom::ImportResult imported = geom::import_file(kBoxObj);
+  ASSERT_TRUE(imported.ok) << imported.error;
+  check_baked(imported.scene, {}, kBoxObj);
+
+  std::vector<unsigned char> bytes = read_bytes(out);
+  Reader rd;
+  ASSERT_TRUE(rd.open(bytes.data(), bytes.size())) << rd.error();
+  expect_same(r.sections, rd);
+  for (size_t n = 0; n < bytes.size(); ++n)
+    ASSERT_FALSE(rd.open(bytes.data(), n)) << "truncated to " << n;  // a prefix of the same buffer
+  for (size_t i = 0; i < bytes.size(); ++i)
+    for (unsigned char mask : {0x01, 0x10, 0x80}) {
+      bytes[i] ^= mask;
+      ASSERT_FALSE(rd.open(bytes.data(), bytes.size())) << "byte " << i << " ^ " << int(mask);
+      EXPECT_FALSE(rd.error().empty());
+      bytes[i] ^= mask;
+    }
+  ASSERT_TRUE(rd.open(bytes.data(), bytes.size())) << rd.error();
+}
+
+TEST(BakeRealFile, DracoBoxGltf) {
+  std::string dir = temp_dir("draco");
+  geom::BakeResult r = geom::bake_file(kDracoBox, dir + "/Box.gbake");
+  ASSERT_TRUE(r.ok) << r.error;
+  geom::ImportResult imported = geom::import_file(kDracoBox);
+  ASSERT_TRUE(imported.ok) << imported.error;
+  EXPECT_EQ(r.report.stats.triangles, 12u);
+  check_baked(imported.scene, {}, kDracoBox);
+  geom::baked::File f;
+  ASSERT_TRUE(f.load(dir + "/Box.gbake")) << f.error();
+  EXPECT_EQ(f.reader().find(SectionType::Indices)->count, 36u);
+}
+
+TEST(BakeRealFile, FailedBakeLeavesNoFile) {
+  std::string dir = temp_dir("failedbake");
+  write_text(dir + "/bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");  // vertex 9 does not exist
+  write_text(dir + "/not_a_dir", "x");
+  geom::BakeResult r = geom::bake_file(dir + "/bad.obj", dir + "/bad.gbake");
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.rfind(dir + "/bad.obj: ", 0), 0u) << r.error;
+  r = geom::bake_file(dir + "/missing.obj", dir + "/missing.gbake");
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.rfind(dir + "/missing.obj: ", 0), 0u) << r.error;
+  r = geom::bake_file(kBoxObj, dir + "/not_a_dir/box.gbake");  // the output's directory is a file
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("cannot write"), std::string::npos) << r.error;
+  auto names = list_dir(dir);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"bad.obj", "not_a_dir"}));
+}
+
+TEST(GeombakeCli, SeveralInputsOneFailing) {
+  std::string dir = temp_dir("cli");
+  write_text(dir + "/a.obj", tetra_obj(0));
+  write_text(dir + "/b.obj", "v 0 0 0\nf 1 2 3\n");  // out of range
+  write_text(dir + "/c.obj", tetra_obj(5));
+  Run r = geombake(dir, "bake '" + dir + "/a.obj' '" + dir + "/b.obj' '" + dir + "/c.obj' -o '" + dir + "/out'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("Error: " + dir + "/b.obj: "), std::string::npos) << r.err;
+  auto names = list_dir(dir + "/out");
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"a.gbake", "c.gbake"}));
+  Run ok = geombake(dir, "inspect '" + dir + "/out/a.gbake' '" + dir + "/out/c.gbake'");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_NE(ok.out.find("all checksums verified"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("volume_sides"), std::string::npos) << ok.out;
+  // Bad arguments: exit 2.
+  EXPECT_EQ(geombake(dir, "bake '" + dir + "/a.obj'").status, 2);  // no -o
+  EXPECT_EQ(geombake(dir, "bake --frobnicate '" + dir + "/a.obj' -o x").status, 2);
+  EXPECT_EQ(geombake(dir, "bake --light 1,2,3 '" + dir + "/a.obj' -o x").status, 2);
+  EXPECT_FALSE(exists(dir + "/x"));
+}
+
+TEST(GeombakeCli, DeterministicAcrossRunsAndThreads) {
+  std::string dir = temp_dir("cli_det");
+  std::string inputs;
+  for (int i = 0; i < 6; ++i) {
+    write_text(dir + "/m" + std::to_string(i) + ".obj", tetra_obj(float(i)));
+    inputs += " '" + dir + "/m" + std::to_string(i) + ".obj'";
+  }
+  inputs += " '" + kBoxObj + "'";
+  ASSERT_EQ(geombake(dir, "bake -j 1" + inputs + " -o '" + dir + "/one'").status, 0);
+  ASSERT_EQ(geombake(dir, "bake -j 4" + inputs + " -o '" + dir + "/four'").status, 0);
+  ASSERT_EQ(geombake(dir, "bake -j 4" + inputs + " -o '" + dir + "/again'").status, 0);
+  auto names = list_dir(dir + "/one");
+  EXPECT_EQ(names.size(), 7u);
+  for (const std::string& n : names) {
+    auto a = read_bytes(dir + "/one/" + n);
+    EXPECT_FALSE(a.empty());
+    EXPECT_EQ(a, read_bytes(dir + "/four/" + n)) << n;
+    EXPECT_EQ(a, read_bytes(dir + "/again/" + n)) << n;
+  }
+}
+
+TEST(GeombakeCli, FlagsJsonDepfileAndInspect) {
+  std::string dir = temp_dir("cli_flags");
+  write_text(dir + "/t.obj", tetra_obj(0));
+  Run r = geombake(dir, "bake --no-esm --no-adjacency --no-remap --light 0,0,5,1 --light 1,1,1,0 --json --depfile '" +
+                            dir + "/t.d' '" + dir + "/t.obj' -o '" + dir + "/t.gbake'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"ok\":true"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"section_bytes\":"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"name\":\"light_sides\""), std::string::npos) << r.out;
+  auto dep = read_bytes(dir + "/t.d");
+  EXPECT_EQ(std::string(dep.begin(), dep.end()), dir + "/t.gbake: " + dir + "/t.obj\n");
+  geom::baked::File f;
+  ASSERT_TRUE(f.load(dir + "/t.gbake")) << f.error();
+  const Reader& rd = f.reader();
+  EXPECT_EQ(rd.find(SectionType::EsmQuads), nullptr);
+  EXPECT_EQ(rd.find(SectionType::AdjacencyIndices), nullptr);
+  EXPECT_EQ(rd.find(SectionType::WeldRemap), nullptr);
+  EXPECT_NE(rd.find(SectionType::VolumeSides), nullptr);
+  EXPECT_NE(rd.find(SectionType::LightSides, 0), nullptr);
+  EXPECT_NE(rd.find(SectionType::LightSides, 1), nullptr);
+  EXPECT_EQ(values<double>(rd.find(SectionType::Lights)), (std::vector<double>{0, 0, 5, 1, 1, 1, 1, 0}));
+
+  Run v = geombake(dir, "bake -v '" + dir + "/t.obj' -o '" + dir + "/v.gbake'");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_NE(v.out.find("esm_quads"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("bytes"), std::string::npos) << v.out;
+
+  Run js = geombake(dir, "inspect --json '" + dir + "/t.gbake'");
+  ASSERT_EQ(js.status, 0) << js.err;
+  EXPECT_NE(js.out.find("\"name\":\"volume_caps\""), std::string::npos) << js.out;
+
+  // A damaged copy: inspect names the file and the problem, exits 1.
+  auto bytes = read_bytes(dir + "/t.gbake");
+  bytes[bytes.size() - 3] ^= 0x40;
+  write_text(dir + "/damaged.gbake", std::string(bytes.begin(), bytes.end()));
+  Run bad = geombake(dir, "inspect '" + dir + "/t.gbake' '" + dir + "/damaged.gbake'");
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_NE(bad.err.find("Error: " + dir + "/damaged.gbake: section "), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("checksum mismatch"), std::string::npos) << bad.err;
+  // A foreign file.
+  Run foreign = geombake(dir, "inspect '" + dir + "/t.obj'");
+  EXPECT_EQ(foreign.status, 1);
+  EXPECT_NE(foreign.err.find("not a geombake baked file"), std::string::npos) << foreign.err;
 }

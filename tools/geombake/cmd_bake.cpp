@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -39,6 +40,12 @@ const char* kBakeHelp =
     "  --no-remap          omit the weld remap (source vertex -> welded vertex)\n"
     "  --no-planes         omit the face planes\n"
     "  --no-topology       omit the topology report\n"
+    "  --no-esm            omit the extended-shadow-map quads\n"
+    "  --no-volume         omit the generic shadow volume (sides, caps)\n"
+    "  --no-adjacency      omit the triangles-with-adjacency index buffer\n"
+    "  --light X,Y,Z,W     also bake the exact shadow volume of this static light (repeatable;\n"
+    "                      W = 1 a point, W = 0 a direction towards X,Y,Z; input coordinates)\n"
+    "  --no-scene-lights   no exact volumes for the file's KHR_lights_punctual lights\n"
     "  --weld-tolerance T  merge vertices closer than T (default 0: exact positions)\n"
     "  --coplanar-degrees D  normals closer than D degrees make a coplanar edge (default 0.01)\n"
     "  --patch-level N     Bezier patch tessellation of Quake 3 maps (default 4)\n"
@@ -78,6 +85,7 @@ nlohmann::ordered_json section_json(const geom::BakedSection& s) {
   return {{"name", s.name},
           {"type", geom::baked::type_name(s.type)},
           {"format", geom::baked::format_name(s.format)},
+          {"item", s.item},
           {"stride", s.stride},
           {"count", s.count},
           {"bytes", s.bytes.size()},
@@ -108,7 +116,7 @@ int run_bake(const std::vector<std::string>& argv) {
   geom::BakeOptions options;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   if (!parse_number(args, "--weld-tolerance", options.weld_tolerance) ||
-      !parse_number(args, "--coplanar-degrees", options.topology.coplanar_degrees) ||
+      !parse_number(args, "--coplanar-degrees", options.planes.coplanar_degrees) ||
       !parse_number(args, "--patch-level", import_options.patch_level) ||
       !parse_number(args, "--md3-frame", import_options.md3_frame) ||
       !parse_number(args, "--max-triangles", import_options.max_triangles) || !parse_number(args, "-j", threads))
@@ -118,6 +126,20 @@ int run_bake(const std::vector<std::string>& argv) {
   options.weld_remap = !args.has("--no-remap");
   options.face_planes = !args.has("--no-planes");
   options.topology_report = !args.has("--no-topology");
+  options.esm = !args.has("--no-esm");
+  options.volume = !args.has("--no-volume");
+  options.adjacency = !args.has("--no-adjacency");
+  options.scene_lights = !args.has("--no-scene-lights");
+  options.topology.coplanar_degrees = options.planes.coplanar_degrees;
+  for (const std::string& text : args.all("--light")) {
+    float l[4];
+    if (!parse_floats(text, 4, l) || !std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) ||
+        !std::isfinite(l[3]) || (l[0] == 0 && l[1] == 0 && l[2] == 0 && l[3] == 0)) {
+      std::fprintf(stderr, "Error: option --light: '%s' is not X,Y,Z,W (finite, not all zero)\n", text.c_str());
+      return 2;
+    }
+    options.lights.push_back({l[0], l[1], l[2], l[3]});
+  }
 
   std::vector<std::string> inputs;
   if (!expand_inputs(args.positional(), inputs)) return 2;
@@ -204,6 +226,7 @@ int run_bake(const std::vector<std::string>& argv) {
         }
         j["section_bytes"] = total;
         j["topology"] = nlohmann::ordered_json::parse(geom::report_json(job.result.report));
+        if (!job.result.silhouette.empty()) j["silhouette"] = nlohmann::ordered_json::parse(job.result.silhouette);
       }
       std::printf("%s\n", j.dump().c_str());
     } else if (args.has("-v") && job.done) {
@@ -212,8 +235,8 @@ int run_bake(const std::vector<std::string>& argv) {
       std::printf("%s -> %s: %zu sections, %llu bytes of buffers\n", job.input.c_str(), job.output.c_str(),
                   job.result.sections.size(), (unsigned long long)total);
       for (const auto& s : job.result.sections)
-        std::printf("  %-15s %-7s %10llu x %-3u = %12zu bytes\n", s.name.c_str(), geom::baked::format_name(s.format),
-                    (unsigned long long)s.count, s.stride, s.bytes.size());
+        std::printf("  %-13s %-4u %-7s %10llu x %-3u = %12zu bytes\n", s.name.c_str(), s.item,
+                    geom::baked::format_name(s.format), (unsigned long long)s.count, s.stride, s.bytes.size());
       std::fputs(geom::report_text(job.result.report).c_str(), stdout);
     }
   }

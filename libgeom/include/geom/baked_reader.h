@@ -46,19 +46,30 @@
 // 0xFFFFFFFF, final xor 0xFFFFFFFF; crc32c("123456789") = 0xE3069283), the one of
 // iSCSI, ext4 and SSE4.2's crc32 instruction. crc32c() below computes it.
 //
-// SECTIONS written by `geombake bake` (see geom/bake.h for what each holds):
-//   type               format   stride  count                    what
-//   Positions          F32x3    12      welded vertices          xyz, GL_ARRAY_BUFFER as it lies
-//   Indices            U32      4       3 x triangles            welded triangles, GL_ELEMENT_ARRAY_BUFFER
-//   WeldRemap          U32      4       source vertices          source vertex -> welded vertex
-//   FacePlanes         F32x4    16      triangles                (nx, ny, nz, d), n unit, n.p + d = 0
-//   TopologyReport     Utf8     1       bytes                    JSON text, keys of `geombake info --json`
-// Types from 16 up carry the silhouette buffers (geom/bake.h names their records).
+// SECTIONS written by `geombake bake` (geom/bake.h says what each holds; the
+// records' layouts are in geom/esm_quads.h and geom/shadow_volume.h):
+//   type               format  stride  count            upload as
+//   Positions          F32x3   12      welded vertices  GL_ARRAY_BUFFER
+//   Indices            U32     4       3 x triangles    GL_ELEMENT_ARRAY_BUFFER
+//   WeldRemap          U32     4       source vertices  (source vertex -> welded vertex)
+//   FacePlanes         F32x4   16      triangles        (nx, ny, nz, d), n unit, n.p + d = 0
+//   TopologyReport     Utf8    1       bytes            (JSON, keys of `geombake info --json`)
+//   Frame              F64x3   24      1                (origin of the local frame of what follows)
+//   EsmQuads           Record  36      quads            GL_ARRAY_BUFFER, one instance per record
+//   EsmPlanes          F32x4   16      planes           GL_TEXTURE_BUFFER (RGBA32F)
+//   VolumeSides        Record  32      sides            GL_ARRAY_BUFFER, one instance per record
+//   VolumeCaps         Record  40      caps             GL_ARRAY_BUFFER, one instance per record
+//   VolumePlanes       F32x4   16      planes           GL_TEXTURE_BUFFER (RGBA32F)
+//   AdjacencyIndices   U32     4       6 x triangles    GL_ELEMENT_ARRAY_BUFFER (GL_TRIANGLES_ADJACENCY)
+//   Lights             F64x4   32      lights           ((x, y, z, w) input coordinates, w = 0 directional)
+//   LightSides/Caps/Planes (item = light index): as VolumeSides/Caps/Planes, exact for that light
+//   SilhouetteReport   Utf8    1       bytes            (JSON: what each rule saved, the lights)
 //
 // READER: Reader::open() validates, in this order: size, magic, endianness,
 // version, header and table bounds, header checksum, file size (truncation),
-// then per section: format and stride, size = count x stride, alignment,
-// bounds, order and overlap, name, padding, checksum. On success sections()
+// alignment, then per section: name, format and stride, size = count x stride,
+// alignment, order and overlap, bounds, zero padding, checksum; at last that
+// the file ends with the last section. On success sections()
 // gives zero-copy views into the caller's buffer (which must outlive them); on
 // failure error() says what is wrong in one line. It never throws (beyond
 // std::bad_alloc from the section vector, bounded by the table size), never
@@ -91,22 +102,24 @@ inline constexpr uint32_t kHeaderCrcOffset = 60;
 
 // What a section's bytes mean. Numbers are fixed forever; new ones may be added.
 enum class SectionType : uint32_t {
-  Positions = 1,       // F32x3 welded vertex positions
-  Indices = 2,         // U32 welded triangle indices, 3 per triangle
-  WeldRemap = 3,       // U32 per source vertex: its welded vertex
-  FacePlanes = 4,      // F32x4 per triangle: unit normal and offset (0,0,0,0 if degenerate)
-  TopologyReport = 5,  // Utf8 JSON text
-  // Silhouette buffers (geom/bake.h documents their records).
-  EsmVertices = 16,          // extended-shadow-map quad vertices
-  EsmIndices = 17,           // U32, 6 per quad
-  VolumeSideVertices = 32,   // shadow-volume side quad vertices
-  VolumeSideIndices = 33,    // U32
-  VolumeCapVertices = 34,    // shadow-volume cap vertices
-  VolumeCapIndices = 35,     // U32
-  AdjacencyIndices = 48,     // U32, 6 per triangle (GL_TRIANGLES_ADJACENCY)
-  Lights = 64,               // F32x4 per light: (x, y, z, w), w = 0 directional
-  LightVolumeVertices = 65,  // per light (item = light index)
-  LightVolumeIndices = 66,   // per light (item = light index), U32
+  Positions = 1,         // F32x3 welded vertex positions
+  Indices = 2,           // U32 welded triangle indices, 3 per triangle
+  WeldRemap = 3,         // U32 per source vertex: its welded vertex
+  FacePlanes = 4,        // F32x4 per triangle: unit normal and offset (0,0,0,0 if degenerate)
+  TopologyReport = 5,    // Utf8 JSON text
+  Frame = 6,             // F64x3, one: the origin of the local frame of the silhouette buffers
+  SilhouetteReport = 7,  // Utf8 JSON text: what each rule saved, the lights
+  // Silhouette buffers: records and plane tables in the local frame (geom/bake.h).
+  EsmQuads = 16,          // Record 36 B per quad (geom/esm_quads.h)
+  EsmPlanes = 17,         // F32x4 plane table of the quads
+  VolumeSides = 32,       // Record 32 B per side (geom/shadow_volume.h)
+  VolumeCaps = 33,        // Record 40 B per cap
+  VolumePlanes = 34,      // F32x4 plane table of sides and caps
+  AdjacencyIndices = 48,  // U32, 6 per triangle (GL_TRIANGLES_ADJACENCY, geom/adjacency.h)
+  Lights = 64,            // F64x4 per static light: (x, y, z, w) in input coordinates, w = 0 directional
+  LightSides = 65,        // per light (item = its index in Lights): exact volume sides, Record 32 B
+  LightCaps = 66,         // per light: exact volume caps, Record 40 B
+  LightPlanes = 67,       // per light: F32x4 plane table
 };
 
 // The element type of a section.
@@ -119,6 +132,8 @@ enum class Format : uint32_t {
   F32x4 = 5,
   Utf8 = 6,    // text, stride 1
   Record = 7,  // a fixed-size record whose layout the section type defines; any stride > 0
+  F64x3 = 8,   // double x 3
+  F64x4 = 9,   // double x 4
 };
 
 // Bytes per element of a format; 0 for Record (the entry's stride decides).
@@ -140,11 +155,15 @@ inline constexpr uint32_t format_stride(Format f) {
       return 1;
     case Format::Record:
       return 0;
+    case Format::F64x3:
+      return 24;
+    case Format::F64x4:
+      return 32;
   }
   return 0;
 }
 
-inline bool format_known(uint32_t f) { return f <= uint32_t(Format::Record); }
+inline bool format_known(uint32_t f) { return f <= uint32_t(Format::F64x4); }
 
 inline const char* format_name(Format f) {
   switch (f) {
@@ -164,6 +183,10 @@ inline const char* format_name(Format f) {
       return "utf8";
     case Format::Record:
       return "record";
+    case Format::F64x3:
+      return "f64x3";
+    case Format::F64x4:
+      return "f64x4";
   }
   return "?";
 }
@@ -180,26 +203,30 @@ inline const char* type_name(SectionType t) {
       return "face_planes";
     case SectionType::TopologyReport:
       return "topology_report";
-    case SectionType::EsmVertices:
-      return "esm_vertices";
-    case SectionType::EsmIndices:
-      return "esm_indices";
-    case SectionType::VolumeSideVertices:
-      return "volume_side_vertices";
-    case SectionType::VolumeSideIndices:
-      return "volume_side_indices";
-    case SectionType::VolumeCapVertices:
-      return "volume_cap_vertices";
-    case SectionType::VolumeCapIndices:
-      return "volume_cap_indices";
+    case SectionType::Frame:
+      return "frame";
+    case SectionType::SilhouetteReport:
+      return "silhouette_report";
+    case SectionType::EsmQuads:
+      return "esm_quads";
+    case SectionType::EsmPlanes:
+      return "esm_planes";
+    case SectionType::VolumeSides:
+      return "volume_sides";
+    case SectionType::VolumeCaps:
+      return "volume_caps";
+    case SectionType::VolumePlanes:
+      return "volume_planes";
     case SectionType::AdjacencyIndices:
       return "adjacency_indices";
     case SectionType::Lights:
       return "lights";
-    case SectionType::LightVolumeVertices:
-      return "light_volume_vertices";
-    case SectionType::LightVolumeIndices:
-      return "light_volume_indices";
+    case SectionType::LightSides:
+      return "light_sides";
+    case SectionType::LightCaps:
+      return "light_caps";
+    case SectionType::LightPlanes:
+      return "light_planes";
   }
   return "unknown";
 }
