@@ -253,8 +253,9 @@ TEST(BakedContainer, ClearErrors) {
   refused(std::vector<unsigned char>(bytes.begin(), bytes.end() - 1), "truncated");
   std::string gltf = "{\"asset\":{\"version\":\"2.0\"}}";
   refused(std::vector<unsigned char>(gltf.begin(), gltf.end()), "not a geombake baked file");
+  ASSERT_EQ(bytes.size(), 128u + 120u);  // header, one entry, 10 positions
   auto b = bytes;
-  b.back() ^= 1;
+  b[200] ^= 1;
   refused(b, "section 0 'positions': checksum mismatch");
   b = bytes;
   b[60] ^= 1;
@@ -715,14 +716,14 @@ void write_text(const std::string& path, const std::string& text) {
   std::fclose(f);
 }
 
-struct Run {
+struct CliRun {
   int status = -1;
   std::string out, err;
 };
 
 // Runs geombake with `args` (already shell-quoted), capturing stdout and stderr.
-Run geombake(const std::string& dir, const std::string& args) {
-  Run r;
+CliRun geombake(const std::string& dir, const std::string& args) {
+  CliRun r;
   std::string out = dir + "/stdout.txt", err = dir + "/stderr.txt";
   int rc = std::system((std::string(GEOMBAKE_EXE) + " " + args + " >'" + out + "' 2>'" + err + "'").c_str());
   r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -815,13 +816,13 @@ TEST(GeombakeCli, SeveralInputsOneFailing) {
   write_text(dir + "/a.obj", tetra_obj(0));
   write_text(dir + "/b.obj", "v 0 0 0\nf 1 2 3\n");  // out of range
   write_text(dir + "/c.obj", tetra_obj(5));
-  Run r = geombake(dir, "bake '" + dir + "/a.obj' '" + dir + "/b.obj' '" + dir + "/c.obj' -o '" + dir + "/out'");
+  CliRun r = geombake(dir, "bake '" + dir + "/a.obj' '" + dir + "/b.obj' '" + dir + "/c.obj' -o '" + dir + "/out'");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("Error: " + dir + "/b.obj: "), std::string::npos) << r.err;
   auto names = list_dir(dir + "/out");
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"a.gbake", "c.gbake"}));
-  Run ok = geombake(dir, "inspect '" + dir + "/out/a.gbake' '" + dir + "/out/c.gbake'");
+  CliRun ok = geombake(dir, "inspect '" + dir + "/out/a.gbake' '" + dir + "/out/c.gbake'");
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("all checksums verified"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("volume_sides"), std::string::npos) << ok.out;
@@ -856,7 +857,7 @@ TEST(GeombakeCli, DeterministicAcrossRunsAndThreads) {
 TEST(GeombakeCli, FlagsJsonDepfileAndInspect) {
   std::string dir = temp_dir("cli_flags");
   write_text(dir + "/t.obj", tetra_obj(0));
-  Run r = geombake(dir, "bake --no-esm --no-adjacency --no-remap --light 0,0,5,1 --light 1,1,1,0 --json --depfile '" +
+  CliRun r = geombake(dir, "bake --no-esm --no-adjacency --no-remap --light 0,0,5,1 --light 1,1,1,0 --json --depfile '" +
                             dir + "/t.d' '" + dir + "/t.obj' -o '" + dir + "/t.gbake'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"ok\":true"), std::string::npos) << r.out;
@@ -875,12 +876,12 @@ TEST(GeombakeCli, FlagsJsonDepfileAndInspect) {
   EXPECT_NE(rd.find(SectionType::LightSides, 1), nullptr);
   EXPECT_EQ(values<double>(rd.find(SectionType::Lights)), (std::vector<double>{0, 0, 5, 1, 1, 1, 1, 0}));
 
-  Run v = geombake(dir, "bake -v '" + dir + "/t.obj' -o '" + dir + "/v.gbake'");
+  CliRun v = geombake(dir, "bake -v '" + dir + "/t.obj' -o '" + dir + "/v.gbake'");
   ASSERT_EQ(v.status, 0) << v.err;
   EXPECT_NE(v.out.find("esm_quads"), std::string::npos) << v.out;
   EXPECT_NE(v.out.find("bytes"), std::string::npos) << v.out;
 
-  Run js = geombake(dir, "inspect --json '" + dir + "/t.gbake'");
+  CliRun js = geombake(dir, "inspect --json '" + dir + "/t.gbake'");
   ASSERT_EQ(js.status, 0) << js.err;
   EXPECT_NE(js.out.find("\"name\":\"volume_caps\""), std::string::npos) << js.out;
 
@@ -888,12 +889,12 @@ TEST(GeombakeCli, FlagsJsonDepfileAndInspect) {
   auto bytes = read_bytes(dir + "/t.gbake");
   bytes[bytes.size() - 3] ^= 0x40;
   write_text(dir + "/damaged.gbake", std::string(bytes.begin(), bytes.end()));
-  Run bad = geombake(dir, "inspect '" + dir + "/t.gbake' '" + dir + "/damaged.gbake'");
+  CliRun bad = geombake(dir, "inspect '" + dir + "/t.gbake' '" + dir + "/damaged.gbake'");
   EXPECT_EQ(bad.status, 1);
   EXPECT_NE(bad.err.find("Error: " + dir + "/damaged.gbake: section "), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("checksum mismatch"), std::string::npos) << bad.err;
   // A foreign file.
-  Run foreign = geombake(dir, "inspect '" + dir + "/t.obj'");
+  CliRun foreign = geombake(dir, "inspect '" + dir + "/t.obj'");
   EXPECT_EQ(foreign.status, 1);
   EXPECT_NE(foreign.err.find("not a geombake baked file"), std::string::npos) << foreign.err;
 }
