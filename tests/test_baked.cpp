@@ -488,7 +488,7 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
   EXPECT_EQ(remap != nullptr, options.weld_remap);
   EXPECT_EQ(planes != nullptr, options.face_planes);
   EXPECT_EQ(topology != nullptr, options.topology_report);
-  EXPECT_EQ(rd.find(SectionType::Frame) != nullptr, silhouette);
+  EXPECT_EQ(rd.find(SectionType::Frame) != nullptr, options.esm || options.volume || !lights.empty());
   EXPECT_EQ(rd.find(SectionType::SilhouetteReport) != nullptr, silhouette);
   EXPECT_EQ(rd.find(SectionType::EsmQuads) != nullptr, options.esm);
   EXPECT_EQ(rd.find(SectionType::EsmPlanes) != nullptr, options.esm);
@@ -552,7 +552,8 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
     EXPECT_EQ(std::string(reinterpret_cast<const char*>(topology->data), topology->size), geom::report_json(expected));
   }
   if (!silhouette) return;
-  EXPECT_EQ(values<double>(rd.find(SectionType::Frame)), std::vector<double>(fp.origin, fp.origin + 3));
+  if (rd.find(SectionType::Frame))
+    EXPECT_EQ(values<double>(rd.find(SectionType::Frame)), std::vector<double>(fp.origin, fp.origin + 3));
   const auto* report = rd.find(SectionType::SilhouetteReport);
   ASSERT_NE(report, nullptr);
   EXPECT_EQ(std::string(reinterpret_cast<const char*>(report->data), report->size), r.silhouette);
@@ -562,7 +563,7 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
     EXPECT_EQ(bytes_of(rd.find(SectionType::EsmQuads)), bytes_of(esm.quads));
     EXPECT_EQ(bytes_of(rd.find(SectionType::EsmPlanes)), bytes_of(esm.planes));
   }
-  geom::ShadowVolume volume = geom::build_shadow_volume(welded, w.indices.data(), tc, topo, fp);
+  geom::ShadowVolume volume = geom::build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
   if (options.volume) {
     EXPECT_EQ(rd.find(SectionType::VolumeSides)->stride, 32u);
     EXPECT_EQ(rd.find(SectionType::VolumeCaps)->stride, 40u);
@@ -857,8 +858,9 @@ TEST(GeombakeCli, DeterministicAcrossRunsAndThreads) {
 TEST(GeombakeCli, FlagsJsonDepfileAndInspect) {
   std::string dir = temp_dir("cli_flags");
   write_text(dir + "/t.obj", tetra_obj(0));
-  CliRun r = geombake(dir, "bake --no-esm --no-adjacency --no-remap --light 0,0,5,1 --light 1,1,1,0 --json --depfile '" +
-                            dir + "/t.d' '" + dir + "/t.obj' -o '" + dir + "/t.gbake'");
+  CliRun r =
+      geombake(dir, "bake --no-esm --no-adjacency --no-remap --light 0,0,5,1 --light 1,1,1,0 --json --depfile '" + dir +
+                        "/t.d' '" + dir + "/t.obj' -o '" + dir + "/t.gbake'");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("\"ok\":true"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"section_bytes\":"), std::string::npos) << r.out;

@@ -147,23 +147,25 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       return r;
     }
 
-    std::vector<double> origin(fp.origin, fp.origin + 3);
-    s.push_back(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
-    std::string js =
-        "{\"frame\":[" + json_number(origin[0]) + "," + json_number(origin[1]) + "," + json_number(origin[2]) + "]";
+    std::string js = "{";
+    if (options.esm || need_volume) {  // the buffers in the local frame
+      std::vector<double> origin(fp.origin, fp.origin + 3);
+      s.push_back(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
+      js += "\"frame\":[" + json_number(origin[0]) + "," + json_number(origin[1]) + "," + json_number(origin[2]) + "],";
+    }
     if (options.esm) {
       EsmQuads esm = build_esm_quads(welded, w.indices.data(), tc, topo, fp, options.esm_options);
       s.push_back(record_section(SectionType::EsmQuads, "esm_quads", esm.quads));
       s.push_back(make_baked_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", esm.planes));
-      js += ",\"esm\":" + esm_json(esm.stats);
+      js += "\"esm\":" + esm_json(esm.stats) + ",";
     }
     ShadowVolume volume;
-    if (need_volume) volume = build_shadow_volume(welded, w.indices.data(), tc, topo, fp);
+    if (need_volume) volume = build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
     if (options.volume) {
       s.push_back(record_section(SectionType::VolumeSides, "volume_sides", volume.sides));
       s.push_back(record_section(SectionType::VolumeCaps, "volume_caps", volume.caps));
       s.push_back(make_baked_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", volume.planes));
-      js += ",\"volume\":" + volume_json(volume.stats);
+      js += "\"volume\":" + volume_json(volume.stats) + ",";
     }
     if (options.adjacency) {
       std::vector<uint32_t> adj(adjacency_index_count(tc));
@@ -173,14 +175,14 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
         return r;
       }
       s.push_back(make_baked_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", adj));
-      js += ",\"adjacency\":{\"indices\":" + json_uint(adj.size()) + "}";
+      js += "\"adjacency\":{\"indices\":" + json_uint(adj.size()) + "},";
     }
     if (!lights.empty()) {
       std::vector<double> table;
       for (const LightVolume& l : lights) table.insert(table.end(), l.light, l.light + 4);
       s.push_back(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table));
     }
-    js += ",\"lights\":[";
+    js += "\"lights\":[";
     for (size_t i = 0; i < lights.size(); ++i) {
       float local[4];
       to_local_light(fp.origin, lights[i].light, local);

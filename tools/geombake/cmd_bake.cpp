@@ -42,6 +42,7 @@ const char* kBakeHelp =
     "  --no-topology       omit the topology report\n"
     "  --no-esm            omit the extended-shadow-map quads\n"
     "  --no-volume         omit the generic shadow volume (sides, caps)\n"
+    "  --one-sided-closed  classic one-sided volumes for closed components (lights outside them only)\n"
     "  --no-adjacency      omit the triangles-with-adjacency index buffer\n"
     "  --light X,Y,Z,W     also bake the exact shadow volume of this static light (repeatable;\n"
     "                      W = 1 a point, W = 0 a direction towards X,Y,Z; input coordinates)\n"
@@ -99,11 +100,11 @@ struct Job {
 };
 
 int run_bake(const std::vector<std::string>& argv) {
-  Args args(
-      argv,
-      {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes", "--no-topology"},
-      {"-o", "-j", "--depfile", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame",
-       "--max-triangles"});
+  Args args(argv,
+            {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
+             "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights", "--one-sided-closed"},
+            {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
+             "--md3-frame", "--max-triangles"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kBakeHelp, stdout);
     return 0;
@@ -129,6 +130,7 @@ int run_bake(const std::vector<std::string>& argv) {
   options.esm = !args.has("--no-esm");
   options.volume = !args.has("--no-volume");
   options.adjacency = !args.has("--no-adjacency");
+  options.volume_options.one_sided_closed = args.has("--one-sided-closed");
   options.scene_lights = !args.has("--no-scene-lights");
   options.topology.coplanar_degrees = options.planes.coplanar_degrees;
   for (const std::string& text : args.all("--light")) {

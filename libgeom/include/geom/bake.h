@@ -34,8 +34,8 @@
 //   light_planes  LightPlanes       F32x4   planes
 //   silhouette    SilhouetteReport  Utf8    bytes            JSON: frame, what each rule saved (ESM and volume
 //                                                            stats), per light its name and record counts
-// `frame` and `silhouette` come with any silhouette buffer (ESM, volume,
-// adjacency or a light).
+// `frame` comes with any buffer in the local frame (ESM, volume or a light),
+// `silhouette` with any silhouette buffer (those, or adjacency).
 //
 // Deterministic: the same scene and options give the same sections, byte for
 // byte, on any run and any thread count (no timestamps, pointers or timings).
@@ -51,6 +51,7 @@
 #include "geom/import.h"
 #include "geom/report.h"
 #include "geom/scene.h"
+#include "geom/shadow_volume.h"
 #include "geom/topology.h"
 
 namespace geom {
@@ -60,6 +61,7 @@ struct BakeOptions {
   TopologyOptions topology;
   FacePlaneOptions planes;
   EsmOptions esm_options;
+  ShadowVolumeOptions volume_options;  // generic and per-light volumes
   bool positions = true;
   bool indices = true;
   bool weld_remap = true;
