@@ -158,6 +158,7 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       s.push_back(record_section(SectionType::EsmQuads, "esm_quads", esm.quads));
       s.push_back(make_baked_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", esm.planes));
       js += "\"esm\":" + esm_json(esm.stats) + ",";
+      r.esm = esm.stats;
     }
     ShadowVolume volume;
     if (need_volume) volume = build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
@@ -166,6 +167,7 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       s.push_back(record_section(SectionType::VolumeCaps, "volume_caps", volume.caps));
       s.push_back(make_baked_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", volume.planes));
       js += "\"volume\":" + volume_json(volume.stats) + ",";
+      r.volume = volume.stats;
     }
     if (options.adjacency) {
       std::vector<uint32_t> adj(adjacency_index_count(tc));

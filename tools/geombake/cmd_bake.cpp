@@ -239,6 +239,20 @@ int run_bake(const std::vector<std::string>& argv) {
       for (const auto& s : job.result.sections)
         std::printf("  %-13s %-4u %-7s %10llu x %-3u = %12zu bytes\n", s.name.c_str(), s.item,
                     geom::baked::format_name(s.format), (unsigned long long)s.count, s.stride, s.bytes.size());
+      const geom::EsmStats& e = job.result.esm;
+      const geom::ShadowVolumeStats& sv = job.result.volume;
+      if (options.esm)
+        std::printf(
+            "  esm         %llu quads on %llu of %llu candidate edges (%llu coplanar, %llu concave skipped), "
+            "%llu bytes against %llu naive\n",
+            (unsigned long long)e.quads, (unsigned long long)e.emitted_edges, (unsigned long long)e.candidate_edges,
+            (unsigned long long)e.skipped_coplanar, (unsigned long long)e.skipped_concave, (unsigned long long)e.bytes,
+            (unsigned long long)e.naive_bytes);
+      if (options.volume)
+        std::printf(
+            "  volume      %llu sides, %llu caps (%llu coplanar edges skipped), %llu bytes against %llu naive\n",
+            (unsigned long long)sv.sides, (unsigned long long)sv.caps, (unsigned long long)sv.skipped_coplanar,
+            (unsigned long long)sv.bytes, (unsigned long long)sv.naive_bytes);
       std::fputs(geom::report_text(job.result.report).c_str(), stdout);
     }
   }

@@ -80,8 +80,10 @@ struct BakeResult {
   bool ok = false;
   std::string error;  // "FILE: what is wrong" when !ok
   std::vector<BakedSection> sections;
-  Report report;           // the topology report (also the `topology` section's text)
-  std::string silhouette;  // the `silhouette` section's JSON text ("" when no silhouette buffer)
+  Report report;             // the topology report (also the `topology` section's text)
+  std::string silhouette;    // the `silhouette` section's JSON text ("" when no silhouette buffer)
+  EsmStats esm;              // what the ESM rules saved (zero without ESM quads)
+  ShadowVolumeStats volume;  // what the volume rules saved (zero without the generic volume)
 };
 
 // Bakes an imported scene; `name` is the input's name as the report shows it.
