@@ -935,3 +935,37 @@ TEST(GeombakeCli, Quake3MapFromArchive) {
   expect_same(baked.sections, f.reader());
   EXPECT_FALSE(baked.report.stats.closed);
 }
+
+// The bundled scene declares a point and a directional light (KHR_lights_punctual):
+// each gets its exact volume, in the scene's order, unless --no-scene-lights.
+TEST(BakeRealFile, SceneLightsOfTheDefaultScene) {
+  const std::string path = std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf";
+  geom::ImportResult imported = geom::import_file(path);
+  ASSERT_TRUE(imported.ok) << imported.error;
+  ASSERT_EQ(imported.scene.lights.size(), 2u);
+  check_baked(imported.scene, {}, path);
+  geom::BakeResult r = geom::bake_scene(imported.scene, path);
+  ASSERT_TRUE(r.ok) << r.error;
+  std::vector<unsigned char> bytes;
+  std::string error;
+  ASSERT_TRUE(geom::serialize_baked(r.sections, bytes, error)) << error;
+  Reader rd;
+  ASSERT_TRUE(rd.open(bytes.data(), bytes.size())) << rd.error();
+  auto expected = geom::scene_lights(imported.scene);
+  auto table = values<double>(rd.find(SectionType::Lights));
+  ASSERT_EQ(table.size(), 8u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(std::vector<double>(table.begin() + 4 * i, table.begin() + 4 * i + 4),
+              std::vector<double>(expected[i].light, expected[i].light + 4));
+    EXPECT_NE(r.silhouette.find("\"name\":\"" + expected[i].name + "\""), std::string::npos) << r.silhouette;
+    EXPECT_GT(rd.find(SectionType::LightSides, uint32_t(i))->count, 0u);
+  }
+  geom::BakeOptions no_lights;
+  no_lights.scene_lights = false;
+  geom::BakeResult n = geom::bake_scene(imported.scene, path, no_lights);
+  ASSERT_TRUE(n.ok) << n.error;
+  for (const auto& s : n.sections) {
+    EXPECT_NE(s.type, SectionType::Lights);
+    EXPECT_NE(s.type, SectionType::LightSides);
+  }
+}
