@@ -1,9 +1,15 @@
-// Tests of the baked container (geom/baked_reader.h, geom/baked_writer.h).
+// Tests of the baked container (geom/baked_reader.h, geom/baked_writer.h), the
+// bake pipeline (geom/bake.h) and `geombake bake` / `geombake inspect`.
 //
-// Laws: what is written reads back as the same buffers; the reader refuses
-// every truncation and every single flipped byte of a real baked file, and
-// foreign files; the layout is a pure function of the sections; a failed write
-// leaves no file.
+// Laws: what is written reads back as the same buffers, each equal to what its
+// library stage makes; the reader refuses every truncation and every single
+// flipped byte of a real baked file, and foreign files, with a clear message;
+// bakes are byte-identical run after run and whatever the thread count; a
+// failed bake leaves no file, and the other inputs of the run still get baked.
+// clang-format off
+#include "geom/baked_reader.h"  // first, so that it is seen to compile alone
+// clang-format on
+
 #include <dirent.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -968,4 +974,20 @@ TEST(BakeRealFile, SceneLightsOfTheDefaultScene) {
     EXPECT_NE(s.type, SectionType::Lights);
     EXPECT_NE(s.type, SectionType::LightSides);
   }
+}
+
+// The reader is one header an engine can take alone: it includes nothing but
+// the C++ standard library (and this file includes it first, so it compiles alone).
+TEST(BakedReaderHeader, StandardLibraryOnly) {
+  std::vector<unsigned char> text = read_bytes(std::string(GEOM_SOURCE_DIR) + "/libgeom/include/geom/baked_reader.h");
+  std::string src(text.begin(), text.end());
+  const std::vector<std::string> allowed = {"<cstddef>", "<cstdint>", "<cstdio>", "<cstring>", "<string>", "<vector>"};
+  size_t includes = 0;
+  for (size_t at = src.find("#include"); at != std::string::npos; at = src.find("#include", at + 1)) {
+    size_t end = src.find('\n', at);
+    std::string what = src.substr(at + 9, end - at - 9);
+    EXPECT_NE(std::find(allowed.begin(), allowed.end(), what), allowed.end()) << "includes " << what;
+    ++includes;
+  }
+  EXPECT_EQ(includes, allowed.size());
 }
