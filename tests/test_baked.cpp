@@ -842,6 +842,16 @@ TEST(GeombakeCli, SeveralInputsOneFailing) {
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("all checksums verified"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("volume_sides"), std::string::npos) << ok.out;
+  // Two inputs with one output name: the second is refused, the first baked.
+  ASSERT_EQ(::mkdir((dir + "/sub").c_str(), 0755), 0);
+  write_text(dir + "/sub/a.obj", tetra_obj(1));
+  CliRun dup = geombake(dir, "bake '" + dir + "/a.obj' '" + dir + "/sub/a.obj' -o '" + dir + "/dup'");
+  EXPECT_EQ(dup.status, 1);
+  EXPECT_NE(dup.err.find("Error: " + dir + "/sub/a.obj: its output " + dir + "/dup/a.gbake is also the output of " +
+                         dir + "/a.obj"),
+            std::string::npos)
+      << dup.err;
+  EXPECT_EQ(list_dir(dir + "/dup"), std::vector<std::string>{"a.gbake"});
   // Bad arguments: exit 2.
   EXPECT_EQ(geombake(dir, "bake '" + dir + "/a.obj'").status, 2);  // no -o
   EXPECT_EQ(geombake(dir, "bake --frobnicate '" + dir + "/a.obj' -o x").status, 2);
