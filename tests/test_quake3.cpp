@@ -135,72 +135,85 @@ const char* const kCountMaps[] = {"oa_dm1.bsp", "oa_ctf2.bsp", "oa_dm3.bsp", "oa
 // ---------------------------------------------------------------------------
 // Counts per face type and per face equal the independent parse; every
 // polygon/mesh triangle is the file's triangle with its winding reversed.
-TEST(Quake3Bsp, CountsEqualIndependentParse) {
-  for (const char* map : kCountMaps) {
-    SCOPED_TRACE(map);
-    const RawBsp raw = raw_map(map);
-    for (int level : {1, 4, 7}) {
-      SCOPED_TRACE("level " + std::to_string(level));
-      ImportResult r = import_bytes(std::string("maps/") + map, raw.bytes, level);
-      ASSERT_TRUE(r.ok) << r.error;
-      const Scene& s = r.scene;
-      std::map<int, uint64_t> faces, tris;
-      uint64_t nodraw = 0, sky = 0;
-      std::vector<uint64_t> per_face(raw.faces.size(), 0);
-      for (size_t f = 0; f < raw.faces.size(); ++f) {
-        const RawFace& face = raw.faces[f];
-        faces[face.type]++;
-        nodraw += raw.nodraw(face);
-        sky += (raw.texture_flags[size_t(face.texture)] & 0x4) != 0;
-        if (raw.nodraw(face) || raw.model_of(f) < 0) continue;
-        if (face.type == 1 || face.type == 3) per_face[f] = uint64_t(face.meshvert_count / 3);
-        if (face.type == 2) {
-          uint64_t cells_x = uint64_t(face.width - 1) / 2 * level, cells_y = uint64_t(face.height - 1) / 2 * level;
-          per_face[f] = 2 * cells_x * cells_y;
-        }
-        tris[face.type] += per_face[f];
-      }
-      EXPECT_EQ(count_of(s, "polygon.faces"), faces[1]);
-      EXPECT_EQ(count_of(s, "patch.faces"), faces[2]);
-      EXPECT_EQ(count_of(s, "mesh.faces"), faces[3]);
-      EXPECT_EQ(count_of(s, "billboard.faces"), faces[4]);
-      EXPECT_EQ(count_of(s, "polygon.triangles"), tris[1]);
-      EXPECT_EQ(count_of(s, "patch.triangles"), tris[2]);
-      EXPECT_EQ(count_of(s, "mesh.triangles"), tris[3]);
-      EXPECT_EQ(count_of(s, "nodraw.faces"), nodraw);
-      EXPECT_EQ(count_of(s, "sky.faces"), sky);
-      EXPECT_EQ(s.triangle_count(), tris[1] + tris[2] + tris[3]);
-      ASSERT_EQ(s.sources.size(), s.triangle_count());
+namespace {
 
-      // Per face: the triangles it produced, their model, and (polygons and
-      // meshes) their corners, in the file's order reversed.
-      std::vector<uint64_t> seen(raw.faces.size(), 0);
-      size_t t = 0;
-      for (size_t m = 0; m < raw.models.size(); ++m) {
-        for (int32_t f = raw.models[m].first; f < raw.models[m].first + raw.models[m].second; ++f) {
-          const RawFace& face = raw.faces[size_t(f)];
-          for (uint64_t k = 0; k < per_face[size_t(f)]; ++k, ++t) {
-            ASSERT_LT(t, s.sources.size());
-            ASSERT_EQ(s.sources[t].primitive, uint32_t(f));
-            ASSERT_EQ(s.sources[t].mesh, uint32_t(m));
-            if (face.type == 2) continue;
-            const int order[3] = {0, 2, 1};
-            for (int j = 0; j < 3; ++j) {
-              const auto& want =
-                  raw.vertices[size_t(face.vertex + raw.meshverts[size_t(face.meshvert) + 3 * k + size_t(order[j])])];
-              const float* got = &s.positions[3 * size_t(s.indices[3 * t + size_t(j)])];
-              ASSERT_EQ(0, std::memcmp(got, want.data(), 12)) << "face " << f << " triangle " << k;
-            }
-          }
+void check_counts(const std::string& map, const RawBsp& raw, int level) {
+  SCOPED_TRACE(map + " level " + std::to_string(level));
+  ImportResult r = import_bytes(map, raw.bytes, level);
+  ASSERT_TRUE(r.ok) << r.error;
+  const Scene& s = r.scene;
+  std::map<int, uint64_t> faces, tris;
+  uint64_t nodraw = 0, sky = 0;
+  std::vector<uint64_t> per_face(raw.faces.size(), 0);
+  for (size_t f = 0; f < raw.faces.size(); ++f) {
+    const RawFace& face = raw.faces[f];
+    faces[face.type]++;
+    nodraw += raw.nodraw(face);
+    sky += (raw.texture_flags[size_t(face.texture)] & 0x4) != 0;
+    if (raw.nodraw(face) || raw.model_of(f) < 0) continue;
+    if (face.type == 1 || face.type == 3) per_face[f] = uint64_t(face.meshvert_count / 3);
+    if (face.type == 2) {
+      uint64_t cells_x = uint64_t(face.width - 1) / 2 * uint64_t(level), cells_y = uint64_t(face.height - 1) / 2 * uint64_t(level);
+      per_face[f] = 2 * cells_x * cells_y;
+    }
+    tris[face.type] += per_face[f];
+  }
+  EXPECT_EQ(count_of(s, "polygon.faces"), faces[1]);
+  EXPECT_EQ(count_of(s, "patch.faces"), faces[2]);
+  EXPECT_EQ(count_of(s, "mesh.faces"), faces[3]);
+  EXPECT_EQ(count_of(s, "billboard.faces"), faces[4]);
+  EXPECT_EQ(count_of(s, "polygon.triangles"), tris[1]);
+  EXPECT_EQ(count_of(s, "patch.triangles"), tris[2]);
+  EXPECT_EQ(count_of(s, "mesh.triangles"), tris[3]);
+  EXPECT_EQ(count_of(s, "nodraw.faces"), nodraw);
+  EXPECT_EQ(count_of(s, "sky.faces"), sky);
+  EXPECT_EQ(s.triangle_count(), tris[1] + tris[2] + tris[3]);
+  ASSERT_EQ(s.sources.size(), s.triangle_count());
+
+  // Per face: the triangles it produced, their model, and (polygons and
+  // meshes) their corners, in the file's order reversed.
+  size_t t = 0;
+  for (size_t m = 0; m < raw.models.size(); ++m) {
+    for (int32_t f = raw.models[m].first; f < raw.models[m].first + raw.models[m].second; ++f) {
+      const RawFace& face = raw.faces[size_t(f)];
+      for (uint64_t k = 0; k < per_face[size_t(f)]; ++k, ++t) {
+        ASSERT_LT(t, s.sources.size());
+        ASSERT_EQ(s.sources[t].primitive, uint32_t(f));
+        ASSERT_EQ(s.sources[t].mesh, uint32_t(m));
+        if (face.type == 2) continue;
+        const int order[3] = {0, 2, 1};
+        for (int j = 0; j < 3; ++j) {
+          const auto& want =
+              raw.vertices[size_t(face.vertex + raw.meshverts[size_t(face.meshvert) + 3 * k + size_t(order[j])])];
+          const float* got = &s.positions[3 * size_t(s.indices[3 * t + size_t(j)])];
+          ASSERT_EQ(0, std::memcmp(got, want.data(), 12)) << "face " << f << " triangle " << k;
         }
       }
-      EXPECT_EQ(t, s.triangle_count());
-      // No vertex is kept that no triangle uses.
-      std::vector<bool> used(s.vertex_count(), false);
-      for (uint32_t i : s.indices) used[i] = true;
-      EXPECT_EQ(size_t(std::count(used.begin(), used.end(), true)), s.vertex_count());
     }
   }
+  EXPECT_EQ(t, s.triangle_count());
+  // No vertex is kept that no triangle uses.
+  std::vector<bool> used(s.vertex_count(), false);
+  for (uint32_t i : s.indices) used[i] = true;
+  EXPECT_EQ(size_t(std::count(used.begin(), used.end(), true)), s.vertex_count());
+}
+
+}  // namespace
+
+TEST(Quake3Bsp, CountsEqualIndependentParse) {
+  for (const char* map : kCountMaps) {
+    const RawBsp raw = raw_map(map);
+    for (int level : {1, 4, 7}) check_counts(map, raw, level);
+  }
+}
+
+// Every map of Debian's openarena-081-maps, at the default level.
+TEST(Quake3Bsp, EveryShippedMapEqualsIndependentParse) {
+  std::vector<std::string> names;
+  std::string error;
+  ASSERT_TRUE(detail::list_archive_members(kMaps, ".bsp", names, error)) << error;
+  ASSERT_GE(names.size(), 40u);
+  for (const std::string& name : names) check_counts(name, parse_raw(member(kMaps, name)), 4);
 }
 
 // The front of every polygon triangle (counter-clockwise after import) faces
@@ -866,31 +879,40 @@ std::vector<RawSurface> parse_md3(const std::vector<unsigned char>& b, int frame
 
 }  // namespace
 
+namespace {
+
+void check_md3(const std::string& model, const std::vector<unsigned char>& b, int frame) {
+  SCOPED_TRACE(model + " frame " + std::to_string(frame));
+  ImportOptions o;
+  o.md3_frame = frame;
+  ImportResult r = import_memory(model, b.data(), b.size(), o);
+  ASSERT_TRUE(r.ok) << r.error;
+  const std::vector<RawSurface> raw = parse_md3(b, frame);
+  size_t t = 0, v = 0;
+  for (size_t s = 0; s < raw.size(); ++s) {
+    v += raw[s].positions.size();
+    for (auto& tri : raw[s].triangles) {
+      ASSERT_LT(t, r.scene.triangle_count());
+      EXPECT_EQ(r.scene.sources[t].mesh, s);
+      const int order[3] = {0, 2, 1};  // reversed to counter-clockwise
+      for (int j = 0; j < 3; ++j) {
+        const float* p = &r.scene.positions[3 * size_t(r.scene.indices[3 * t + size_t(j)])];
+        ASSERT_EQ(0, std::memcmp(p, raw[s].positions[size_t(tri[size_t(order[j])])].data(), 12));
+      }
+      ++t;
+    }
+  }
+  EXPECT_EQ(t, r.scene.triangle_count());
+  EXPECT_EQ(v, r.scene.vertex_count());
+}
+
+}  // namespace
+
 TEST(Quake3Md3, SurfacesOfAFrameEqualIndependentParse) {
   for (const char* model : {"gargoyle/head.md3", "gargoyle/upper_2.md3", "gargoyle/lower.md3"}) {
-    SCOPED_TRACE(model);
     const std::vector<unsigned char> b = member(kPlayers, std::string("models/players/") + model);
     const int frames = get<int32_t>(b, 76);
-    for (int frame : {0, frames / 2, frames - 1}) {
-      ImportOptions o;
-      o.md3_frame = frame;
-      ImportResult r = import_memory(model, b.data(), b.size(), o);
-      ASSERT_TRUE(r.ok) << r.error;
-      const std::vector<RawSurface> raw = parse_md3(b, frame);
-      size_t t = 0;
-      for (size_t s = 0; s < raw.size(); ++s)
-        for (auto& tri : raw[s].triangles) {
-          ASSERT_LT(t, r.scene.triangle_count());
-          EXPECT_EQ(r.scene.sources[t].mesh, s);
-          const int order[3] = {0, 2, 1};  // reversed to counter-clockwise
-          for (int j = 0; j < 3; ++j) {
-            const float* p = &r.scene.positions[3 * size_t(r.scene.indices[3 * t + size_t(j)])];
-            ASSERT_EQ(0, std::memcmp(p, raw[s].positions[size_t(tri[size_t(order[j])])].data(), 12));
-          }
-          ++t;
-        }
-      EXPECT_EQ(t, r.scene.triangle_count());
-    }
+    for (int frame : {0, frames / 2, frames - 1}) check_md3(model, b, frame);
   }
   // Closed surfaces enclose positive volume once reversed (outward fronts).
   const std::vector<unsigned char> head = member(kPlayers, "models/players/gargoyle/head.md3");
@@ -911,6 +933,19 @@ TEST(Quake3Md3, SurfacesOfAFrameEqualIndependentParse) {
                a[2] * (double(b[0]) * c[1] - double(b[1]) * c[0])) / 6;
   }
   EXPECT_GT(volume, 100.0);
+}
+
+// Every model of Debian's openarena-081-players, first and last frame.
+TEST(Quake3Md3, EveryShippedModelEqualsIndependentParse) {
+  std::vector<std::string> names;
+  std::string error;
+  ASSERT_TRUE(detail::list_archive_members(kPlayers, ".md3", names, error)) << error;
+  ASSERT_GE(names.size(), 50u);
+  for (const std::string& name : names) {
+    const std::vector<unsigned char> b = member(kPlayers, name);
+    check_md3(name, b, 0);
+    check_md3(name, b, get<int32_t>(b, 76) - 1);
+  }
 }
 
 TEST(Quake3Md3, HostileAndTruncatedRefused) {
