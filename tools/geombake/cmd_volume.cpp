@@ -19,9 +19,10 @@ namespace {
 
 const char* kVolumeHelp =
     "usage: geombake volume INPUT --light X,Y,Z,W -o volume.obj [options]\n"
-    "  Writes the shadow volume of one light as an OBJ triangle mesh: faces oriented\n"
-    "  outward, a face repeated where its multiplicity is 2 or more, extruded to a\n"
-    "  finite distance past the scene's bounds instead of infinity.\n"
+    "  Writes the exact shadow volume of one light as an OBJ triangle mesh: faces\n"
+    "  oriented outward, a face repeated where its multiplicity is 2 or more (open\n"
+    "  and non-manifold surfaces count both sides), extruded to a finite distance\n"
+    "  past the scene's bounds instead of infinity.\n"
     "  W = 1: a point light at (X,Y,Z); W = 0: a directional light lying at infinity\n"
     "  in direction (X,Y,Z) (its rays travel along -(X,Y,Z)).\n"
     "options:\n"
@@ -29,16 +30,14 @@ const char* kVolumeHelp =
     "  -o FILE               the OBJ to write (required; written atomically)\n"
     "  --extrude-distance D  how far past the bounds (default: the bounds' diagonal)\n"
     "  --no-caps             sides only (what depth-pass draws; not a closed mesh)\n"
-    "  --one-sided           classic one-sided volumes for closed components\n"
-    "                        (only valid while the light is outside them)\n"
     "  --weld-tolerance T    merge vertices closer than T (default 0: exact positions)\n"
     "  -v                    what each rule saved, on stderr\n"
     "  --patch-level N, --md3-frame N, --max-triangles N  as for `geombake info`\n";
 
 int run_volume(const std::vector<std::string>& argv) {
-  Args args(argv, {"-v", "--help", "-h", "--no-caps", "--one-sided"},
-            {"-o", "--light", "--extrude-distance", "--weld-tolerance", "--patch-level", "--md3-frame",
-             "--max-triangles"});
+  Args args(
+      argv, {"-v", "--help", "-h", "--no-caps"},
+      {"-o", "--light", "--extrude-distance", "--weld-tolerance", "--patch-level", "--md3-frame", "--max-triangles"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kVolumeHelp, stdout);
     return 0;
@@ -86,13 +85,13 @@ int run_volume(const std::vector<std::string>& argv) {
   }
   const geom::Scene& scene = imported.scene;
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
-  if (scene.triangle_count() == 0) std::fprintf(stderr, "Warning: %s: no triangles, the volume is empty\n", input.c_str());
+  if (scene.triangle_count() == 0)
+    std::fprintf(stderr, "Warning: %s: no triangles, the volume is empty\n", input.c_str());
 
   geom::SilhouetteOptions so;
   so.weld_tolerance = tolerance;
   so.esm_quads = false;
   so.adjacency = false;
-  so.volume.one_sided_closed = args.has("--one-sided");
   geom::LightVolume light;
   for (int k = 0; k < 4; ++k) light.light[k] = lf[k];
   light.name = "--light";
@@ -111,9 +110,11 @@ int run_volume(const std::vector<std::string>& argv) {
                          (hi[2] - lo[2]) * (hi[2] - lo[2]));
     if (!(distance > 0)) distance = 1;
   }
+  // The exact volume of this light (geom/shadow_volume.h build_light_volume):
+  // closed components one-sided on the light's side, open ones double-sided.
   float local[4];
   geom::to_local_light(b.planes.origin, light.light, local);
-  geom::ShadowVolume volume = b.volume;
+  geom::ShadowVolume volume = b.lights[0].volume;
   if (args.has("--no-caps")) volume.caps.clear();
   const geom::VolumeMesh mesh = geom::finite_volume(volume, local, lo, hi, distance);
   char comment[512];
