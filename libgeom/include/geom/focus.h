@@ -58,10 +58,12 @@
 // else those of a CGAL 3D convex hull of H's vertices (exact predicates);
 // either way they close (V - E + F = 2).
 //
-// Cost (bench/bench_focus.cpp, median CPU time per light per frame on the
-// shared, loaded 2-core build machine): about 20-34 microseconds for the
-// matrix alone (FocusOptions::faces off), 25-35 with H's faces; a frame whose
-// faces need the 3D hull costs 100-200 more.
+// Cost (bench/bench_focus.cpp, median per light per frame on one core of the
+// shared 2-core build machine): 20-41 microseconds for the matrix alone
+// (FocusOptions::faces off), 27-51 with H's faces; of a PSM frame about 8
+// go to R's clips, 1.5 to CGAL's silhouette hull, 8 to H's clips, 10 to the
+// faces and 1.5 to the matrix. A frame whose faces need the 3D hull costs
+// 60-200 more.
 // Reusing the same FocusResult frame after frame keeps its vectors' capacity.
 //
 // No exception escapes these functions. They may run on several threads at
