@@ -19,5 +19,7 @@ const std::vector<Command>& commands();
 
 }  // namespace geombake
 
+// Use at namespace scope in the same namespace as FN (e.g. inside namespace geombake { namespace { ... } }):
+//   GEOMBAKE_COMMAND("info", "one-line summary", run_info);
 #define GEOMBAKE_COMMAND(NAME, SUMMARY, FN) \
   static const bool geombake_registered_##FN = ::geombake::register_command({NAME, SUMMARY, FN})

@@ -1,0 +1,3 @@
+find_package(meshoptimizer REQUIRED)
+find_package(OpenMesh REQUIRED)
+target_link_libraries(${name} PRIVATE meshoptimizer::meshoptimizer OpenMeshCore)

@@ -1,0 +1,53 @@
+// geom/report.h: the topology report of one input, for people and machines.
+//
+// `analyze` runs the default pipeline (exact weld, or the given tolerance,
+// then build_topology) over an imported scene; `report_json` writes one JSON
+// object on one line with these keys (counts over the non-collapsed triangles
+// after the weld, see geom/topology.h for the definitions):
+//   file, triangles, vertices, edges, boundary_edges, manifold_edges,
+//   inconsistent_edges, non_manifold_edges, max_edge_faces, coplanar_edges,
+//   convex_edges, concave_edges, collapsed_triangles, zero_area_triangles,
+//   duplicate_triangles, components, closed_components, closed,
+//   euler_characteristic, boundary_loops and openmesh_refused_faces (OpenMesh's
+//   half-edge view of the same mesh, geom/halfedge.h), lights, warnings (array of strings),
+//   source_faces (BSP only: {"polygon": {"faces": n, "triangles": n}, ...}),
+//   stages (with timing: [{"stage", "seconds", "peak_rss_bytes"}]).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geom/halfedge.h"
+#include "geom/scene.h"
+#include "geom/topology.h"
+
+namespace geom {
+
+struct StageTiming {
+  std::string stage;
+  double seconds = 0;
+  uint64_t peak_rss_bytes = 0;  // the process's peak resident set after the stage (0 if unknown)
+};
+
+struct Report {
+  std::string file;
+  TopologyStats stats;
+  HalfedgeSummary halfedge;  // OpenMesh's view: boundary loops, refused faces
+  uint64_t lights = 0;
+  std::vector<std::pair<std::string, uint64_t>> source_counts;  // Scene::source_counts
+  std::vector<std::string> warnings;
+  std::vector<StageTiming> stages;  // empty unless timing was asked for
+};
+
+// Weld (tolerance 0: exact) and build the topology of `scene`; fills `report`
+// (and appends "weld" and "topology" stages when `timing` is set).
+void analyze(const Scene& scene, float weld_tolerance, const TopologyOptions& options, bool timing, Report& report);
+
+std::string report_json(const Report& report);
+std::string report_text(const Report& report);
+
+// The process's peak resident set size in bytes (Linux VmHWM), 0 if unknown.
+uint64_t peak_rss_bytes();
+
+}  // namespace geom

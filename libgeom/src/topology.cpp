@@ -1,0 +1,213 @@
+// Edge table and classification (see geom/topology.h for the definitions).
+//
+// Half-edges are bucketed by their smaller vertex (a counting sort, O(n)),
+// then each small bucket is sorted by the larger vertex and face, so edges come
+// out ordered by (v0, v1) and each edge's faces in triangle order: the result
+// is deterministic and independent of any hash. Nothing is dropped: an edge
+// keeps every face that uses it, however many.
+#include "geom/topology.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace geom {
+namespace {
+
+struct HalfEdge {
+  uint32_t other;  // the larger vertex
+  uint32_t face;
+  uint8_t k;       // which edge of the face: (i_k, i_{k+1})
+  uint8_t reversed;
+};
+
+struct Vec {
+  double x, y, z;
+};
+inline Vec sub(const Float3& a, const Float3& b) { return {double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z}; }
+inline Vec cross(Vec a, Vec b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline double dot(Vec a, Vec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
+  while (parent[v] != v) {
+    parent[v] = parent[parent[v]];
+    v = parent[v];
+  }
+  return v;
+}
+
+}  // namespace
+
+Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                        const TopologyOptions& options) {
+  Topology t;
+  TopologyStats& s = t.stats;
+  const size_t vn = positions.size();
+  s.triangles = triangle_count;
+  t.face_flags.assign(triangle_count, 0);
+  t.face_edges.assign(triangle_count * 3, Topology::kNone);
+  t.face_component.assign(triangle_count, Topology::kNone);
+
+  // Collapsed faces, and the half-edge count per smaller vertex.
+  std::vector<uint32_t> start(vn + 1, 0);
+  for (size_t f = 0; f < triangle_count; ++f) {
+    const uint32_t* v = indices + 3 * f;
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
+      t.face_flags[f] |= kFaceCollapsed;
+      ++s.collapsed_triangles;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) ++start[std::min(v[k], v[(k + 1) % 3]) + 1];
+  }
+  for (size_t i = 0; i < vn; ++i) start[i + 1] += start[i];
+  std::vector<HalfEdge> half(start[vn]);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t f = 0; f < triangle_count; ++f) {
+      if (t.face_flags[f] & kFaceCollapsed) continue;
+      const uint32_t* v = indices + 3 * f;
+      for (int k = 0; k < 3; ++k) {
+        uint32_t a = v[k], b = v[(k + 1) % 3];
+        uint32_t lo = std::min(a, b), hi = std::max(a, b);
+        half[fill[lo]++] = {hi, uint32_t(f), uint8_t(k), uint8_t(a > b)};
+      }
+    }
+  }
+
+  // Group each bucket into edges.
+  t.edges.reserve(half.size() / 2 + 16);
+  t.edge_faces.reserve(half.size());
+  for (size_t v0 = 0; v0 < vn; ++v0) {
+    HalfEdge* b = half.data() + start[v0];
+    HalfEdge* e = half.data() + start[v0 + 1];
+    if (b == e) continue;
+    std::sort(b, e, [](const HalfEdge& x, const HalfEdge& y) {
+      return x.other != y.other ? x.other < y.other : x.face != y.face ? x.face < y.face : x.k < y.k;
+    });
+    for (HalfEdge* run = b; run != e;) {
+      HalfEdge* end = run;
+      while (end != e && end->other == run->other) ++end;
+      Edge edge{uint32_t(v0), run->other, uint32_t(t.edge_faces.size()), uint32_t(end - run), EdgeKind::Boundary,
+                EdgeShape::None, 0.0f};
+      const uint32_t id = uint32_t(t.edges.size());
+      for (HalfEdge* h = run; h != end; ++h) {
+        t.edge_faces.push_back(h->face << 1 | h->reversed);
+        t.face_edges[3 * size_t(h->face) + h->k] = id;
+      }
+      if (edge.face_count == 2)
+        edge.kind = run[0].reversed != run[1].reversed ? EdgeKind::Manifold : EdgeKind::Inconsistent;
+      else if (edge.face_count >= 3)
+        edge.kind = EdgeKind::NonManifold;
+      t.edges.push_back(edge);
+      run = end;
+    }
+  }
+  std::vector<HalfEdge>().swap(half);
+
+  // Face normals (double precision from the float input); zero-area faces.
+  std::vector<Vec> normal(triangle_count, Vec{0, 0, 0});
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (t.face_flags[f] & kFaceCollapsed) continue;
+    const uint32_t* v = indices + 3 * f;
+    Vec n = cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
+    double len = std::sqrt(dot(n, n));
+    if (!(len > 0.0)) {
+      t.face_flags[f] |= kFaceZeroArea;
+      ++s.zero_area_triangles;
+      continue;
+    }
+    normal[f] = {n.x / len, n.y / len, n.z / len};
+  }
+
+  // Classify edges; dihedral angles of manifold edges.
+  const double coplanar_cos = std::cos(options.coplanar_degrees * M_PI / 180.0);
+  for (Edge& e : t.edges) {
+    switch (e.kind) {
+      case EdgeKind::Boundary: ++s.boundary_edges; break;
+      case EdgeKind::Manifold: ++s.manifold_edges; break;
+      case EdgeKind::Inconsistent: ++s.inconsistent_edges; break;
+      case EdgeKind::NonManifold: ++s.non_manifold_edges; break;
+    }
+    s.max_edge_faces = std::max(s.max_edge_faces, e.face_count);
+    if (e.kind != EdgeKind::Manifold) continue;
+    const uint32_t f0 = t.edge_faces[e.first] >> 1, f1 = t.edge_faces[e.first + 1] >> 1;
+    if ((t.face_flags[f0] | t.face_flags[f1]) & kFaceZeroArea) continue;
+    const Vec n0 = normal[f0], n1 = normal[f1];
+    const double c = std::max(-1.0, std::min(1.0, dot(n0, n1)));
+    const double theta = std::acos(c) * 180.0 / M_PI;  // angle between the normals
+    if (c >= coplanar_cos) {
+      e.shape = EdgeShape::Coplanar;
+      e.dihedral_degrees = 180.0f;
+      ++s.coplanar_edges;
+      continue;
+    }
+    // The far vertex of f1, against f0's plane: behind = convex.
+    const uint32_t* w = indices + 3 * size_t(f1);
+    uint32_t far = w[0] != e.v0 && w[0] != e.v1 ? w[0] : w[1] != e.v0 && w[1] != e.v1 ? w[1] : w[2];
+    const double side = dot(n0, sub(positions[far], positions[e.v0]));
+    if (side < 0.0) {
+      e.shape = EdgeShape::Convex;
+      e.dihedral_degrees = float(180.0 - theta);
+      ++s.convex_edges;
+    } else {
+      e.shape = EdgeShape::Concave;
+      e.dihedral_degrees = float(180.0 + theta);
+      ++s.concave_edges;
+    }
+  }
+
+  // Duplicate faces: same vertex set as an earlier face sharing its first edge.
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (t.face_flags[f] & kFaceCollapsed) continue;
+    const uint32_t* v = indices + 3 * f;
+    uint32_t a[3] = {v[0], v[1], v[2]};
+    std::sort(a, a + 3);
+    const Edge& e = t.edges[t.face_edges[3 * f]];
+    for (uint32_t i = 0; i < e.face_count; ++i) {
+      uint32_t g = t.edge_faces[e.first + i] >> 1;
+      if (g >= f) break;
+      const uint32_t* w = indices + 3 * size_t(g);
+      uint32_t b[3] = {w[0], w[1], w[2]};
+      std::sort(b, b + 3);
+      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) {
+        t.face_flags[f] |= kFaceDuplicate;
+        ++s.duplicate_triangles;
+        break;
+      }
+    }
+  }
+
+  // Used vertices and components (union-find over shared vertices).
+  std::vector<uint32_t> parent(vn);
+  std::iota(parent.begin(), parent.end(), 0u);
+  std::vector<uint8_t> used(vn, 0);
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (t.face_flags[f] & kFaceCollapsed) continue;
+    const uint32_t* v = indices + 3 * f;
+    used[v[0]] = used[v[1]] = used[v[2]] = 1;
+    for (int k = 1; k < 3; ++k) {
+      uint32_t r0 = find_root(parent, v[0]), r1 = find_root(parent, v[k]);
+      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);
+    }
+  }
+  for (size_t i = 0; i < vn; ++i) s.vertices += used[i];
+  std::vector<uint32_t> label(vn, Topology::kNone);
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (t.face_flags[f] & kFaceCollapsed) continue;
+    uint32_t r = find_root(parent, indices[3 * f]);
+    if (label[r] == Topology::kNone) label[r] = uint32_t(s.components++);
+    t.face_component[f] = label[r];
+  }
+  std::vector<uint8_t> open(s.components, 0);
+  for (const Edge& e : t.edges)
+    if (e.kind == EdgeKind::Boundary || e.kind == EdgeKind::NonManifold)
+      open[t.face_component[t.edge_faces[e.first] >> 1]] = 1;
+  for (uint8_t o : open) s.closed_components += !o;
+
+  s.edges = t.edges.size();
+  s.closed = s.boundary_edges == 0 && s.non_manifold_edges == 0;
+  s.euler_characteristic = int64_t(s.vertices) - int64_t(s.edges) + int64_t(triangle_count - s.collapsed_triangles);
+  return t;
+}
+
+}  // namespace geom

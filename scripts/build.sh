@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Configures and builds the project into build/ (Release). Extra arguments go to cmake's configure step.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+GEN=()
+command -v ninja >/dev/null 2>&1 && [ ! -f build/Makefile ] && GEN=(-G Ninja)
+cmake -S . -B build "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build build -j"$(nproc)"
