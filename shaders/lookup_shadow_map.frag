@@ -18,8 +18,9 @@ float shadow_visibility(vec3 world, vec3 normal) {
   vec3 p = c.xyz / c.w * 0.5 + 0.5;
   if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
   if (u_pcf == 0) return textureLod(u_shadow_map, p, 0.0);
+  vec2 texel = 1.0 / vec2(textureSize(u_shadow_map, 0));
   float sum = 0.0;
   for (int y = -1; y <= 1; ++y)
-    for (int x = -1; x <= 1; ++x) sum += textureLodOffset(u_shadow_map, p, 0.0, ivec2(x, y));
+    for (int x = -1; x <= 1; ++x) sum += textureLod(u_shadow_map, p + vec3(vec2(x, y) * texel, 0.0), 0.0);
   return sum / 9.0;
 }

@@ -42,6 +42,7 @@ struct GlName {
   GlName() = default;
   GlName(const GlName&) = delete;
   GlName& operator=(const GlName&) = delete;
+  GlName(GlName&& o) noexcept : id(o.id) { o.id = 0; }
   GlName& operator=(GlName&& o) noexcept {
     std::swap(id, o.id);
     return *this;
@@ -416,7 +417,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   set(p, "u_light_matrix", light_clip);
   set(p, "u_shadow_map", 0);
   set(p, "u_pcf", fs.technique == Technique::Pcf ? 1 : 0);
-  set(p, "u_cube_bias", 0.985f);                            // 003, 12.3.7: fDistSquared * DepthBias
+  set(p, "u_cube_bias", 0.97f);                             // 003, 12.3.7: fDistSquared * DepthBias
   set(p, "u_cube_filter", 1.0f / float(n));                 // 003, 12.4: tap offsets of about one texel
   glBindTextureUnit(0, shadow_texture);
   timer.begin("shading");
