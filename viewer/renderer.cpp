@@ -2,6 +2,13 @@
 // shared shading pass. References for each pass are in the shaders' headers:
 //   shadow map + slope-scaled bias, PCF ........ shaders/lookup_shadow_map.frag
 //   omnidirectional cube map (003, 12.3-12.4) .. shaders/cube_distance.*, lookup_cube.frag
+//   edge distance shadow map (001) ............. shaders/edsm_edges.*, lookup_edsm.frag
+//   extended shadow map (000) .................. shaders/esm_quad.vert, esm_edges.frag, lookup_esm.frag
+//   stencil shadow volumes (004, 001 Sect. 5) .. shaders/shadow_volume.vert, volume.frag
+// The silhouette buffers come from geom/silhouette.h, baked once per caster
+// (the triangles of one glTF mesh instance, or of the whole file when it has
+// no such notion), so that shadow volumes choose depth-pass or depth-fail per
+// caster as an engine does.
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/glcorearb.h>
 
@@ -18,6 +25,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "geom/silhouette.h"
+
 namespace viewer {
 namespace {
 
@@ -29,6 +38,11 @@ bool technique_available(Technique t) {
     case Technique::Ssm:
     case Technique::Pcf:
     case Technique::Cube:
+    case Technique::Esm:
+    case Technique::Edsm:
+    case Technique::Sv:
+    case Technique::SvZPass:
+    case Technique::SvZFail:
       return true;
     default:
       return false;
@@ -111,6 +125,30 @@ struct PassTimer {
   }
 };
 
+// The static buffers of one caster (geom/silhouette.h), in its local frame.
+struct Caster {
+  glm::vec3 lo{0}, hi{0};  // world bounding box
+  glm::dvec3 origin{0};    // local frame origin (geom/face_planes.h)
+  // Edge distance shadow map: welded positions (world) + GL_TRIANGLES_ADJACENCY indices.
+  Buffer welded, adjacency;
+  VertexArray adjacency_vao;
+  GLsizei adjacency_count = 0;
+  // Extended shadow map quads and their planes (texture buffer).
+  Buffer esm_records, esm_plane_buffer;
+  Texture esm_planes;
+  VertexArray esm_vao;
+  GLsizei esm_count = 0;
+  // Shadow volume sides, caps and planes.
+  Buffer sv_sides, sv_caps, sv_plane_buffer;
+  Texture sv_planes;
+  VertexArray sides_vao, caps_vao;
+  GLsizei side_count = 0, cap_count = 0;
+  // Inspection lines (world): boundary, non-manifold, inconsistent edges, then degenerate faces' edges.
+  Buffer lines;
+  VertexArray lines_vao;
+  GLsizei line_first[4] = {0, 0, 0, 0}, line_count[4] = {0, 0, 0, 0};
+};
+
 }  // namespace
 
 struct State {
@@ -123,8 +161,16 @@ struct State {
   GLsizei scene_vertices = 0;
   glm::vec4 bounds{0, 0, 0, 1};
   // Render targets, re-created when their size changes.
-  Target camera, shadow_map, cube;
+  Target camera, shadow_map, cube, edge_map;
+  GLuint depth_sampler = 0;  // reads a depth texture without comparison
   std::map<std::string, Program> programs;
+  // Silhouette buffers per caster, baked on first use.
+  geom::Scene scene;  // positions, indices, sources: the casters are baked from it
+  bool casters_built = false;
+  std::vector<Caster> casters;
+  ~State() {
+    if (depth_sampler) glDeleteSamplers(1, &depth_sampler);
+  }
 };
 
 void StateDeleter::operator()(State* s) const { delete s; }
@@ -285,33 +331,325 @@ glm::vec3 any_perpendicular(glm::vec3 d) {
   return std::fabs(d.y) < 0.9f * glm::length(d) ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
 }
 
-// World -> light clip matrix of a single shadow map covering the scene's bounding
-// sphere: orthographic for a directional light, perspective for a point light
-// (aimed at the sphere) and for a spot light (aimed along its axis, the cone's
-// full angle as field of view).
-glm::mat4 light_matrix(const State& s, const LightSetup& light) {
+// The single shadow map's light frame, covering the scene's bounding sphere:
+// orthographic for a directional light, perspective for a point light (aimed
+// at the sphere) and for a spot light (aimed along its axis, the cone's full
+// angle as field of view).
+struct LightFrame {
+  glm::mat4 proj{1}, view{1};
+  glm::mat4 clip() const { return proj * view; }
+};
+
+LightFrame light_frame(const State& s, const LightSetup& light) {
   const glm::vec3 c(s.bounds), L(light.position);
   const float r = std::max(s.bounds.w, 1e-6f);
+  LightFrame f;
   if (light.position.w == 0) {
     const glm::vec3 dir = glm::normalize(L);
-    const glm::mat4 view = glm::lookAt(c + dir * (2 * r), c, any_perpendicular(dir));
-    return glm::ortho(-r, r, -r, r, r * 0.5f, r * 3.5f) * view;
+    f.view = glm::lookAt(c + dir * (2 * r), c, any_perpendicular(dir));
+    f.proj = glm::ortho(-r, r, -r, r, r * 0.5f, r * 3.5f);
+    return f;
   }
   const float d = glm::length(c - L);
   const float near_plane = std::max(d - r, r * 1e-3f), far_plane = d + r;
+  glm::vec3 axis = d > 1e-6f * r ? (c - L) / d : glm::vec3(0, -1, 0);
+  float fov = d > r ? std::min(2 * std::asin(r / d) * 1.02f, glm::radians(170.0f)) : glm::radians(170.0f);
   if (light.spot) {
-    const glm::vec3 axis = glm::normalize(light.spot_direction);
-    const float fov = std::min(2 * glm::radians(light.spot_angle_deg) * 1.02f, glm::radians(170.0f));
-    return glm::perspective(fov, 1.0f, near_plane, far_plane) * glm::lookAt(L, L + axis, any_perpendicular(axis));
+    axis = glm::normalize(light.spot_direction);
+    fov = std::min(2 * glm::radians(light.spot_angle_deg) * 1.02f, glm::radians(170.0f));
   }
-  const glm::vec3 axis = d > 1e-6f * r ? (c - L) / d : glm::vec3(0, -1, 0);
-  const float fov = d > r ? std::min(2 * std::asin(r / d) * 1.02f, glm::radians(170.0f)) : glm::radians(170.0f);
-  return glm::perspective(fov, 1.0f, near_plane, far_plane) * glm::lookAt(L, L + axis, any_perpendicular(axis));
+  f.view = glm::lookAt(L, L + axis, any_perpendicular(axis));
+  f.proj = glm::perspective(fov, 1.0f, near_plane, far_plane);
+  return f;
 }
 
 void draw_scene(const State& s) {
   glBindVertexArray(s.scene_vao);
   glDrawArrays(GL_TRIANGLES, 0, s.scene_vertices);
+}
+
+
+// Groups the triangles by caster: one glTF mesh instance (file, mesh, node), or
+// everything where the format has no such notion.
+std::vector<std::vector<uint32_t>> caster_triangles(const geom::Scene& scene) {
+  std::map<std::tuple<uint32_t, uint32_t, uint32_t>, size_t> group_of;
+  std::vector<std::vector<uint32_t>> groups;
+  for (size_t t = 0; t < scene.triangle_count(); ++t) {
+    geom::TriangleSource src = t < scene.sources.size() ? scene.sources[t] : geom::TriangleSource();
+    auto key = std::make_tuple(src.file, src.mesh, src.node);
+    auto it = group_of.emplace(key, groups.size()).first;
+    if (it->second == groups.size()) groups.emplace_back();
+    groups[it->second].push_back(uint32_t(t));
+  }
+  return groups;
+}
+
+void upload(Buffer& buffer, const void* data, size_t bytes, const char* name) {
+  glCreateBuffers(1, &buffer.id);
+  glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(bytes, 16)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  if (bytes) glNamedBufferSubData(buffer, 0, GLsizeiptr(bytes), data);
+  label(GL_BUFFER, buffer, name);
+}
+
+void plane_texture(Texture& texture, Buffer& buffer, const std::vector<float>& planes, const char* name) {
+  upload(buffer, planes.data(), planes.size() * sizeof(float), name);
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture.id);
+  glTextureBuffer(texture, GL_RGBA32F, buffer);
+  label(GL_TEXTURE, texture, name);
+}
+
+void attribute(GLuint vao, GLuint location, GLint size, GLenum type, GLuint offset, bool integer, bool normalized = false) {
+  glEnableVertexArrayAttrib(vao, location);
+  if (integer) glVertexArrayAttribIFormat(vao, location, size, type, offset);
+  else glVertexArrayAttribFormat(vao, location, size, type, normalized ? GL_TRUE : GL_FALSE, offset);
+  glVertexArrayAttribBinding(vao, location, 0);
+}
+
+// Bakes and uploads the silhouette buffers of every caster (once).
+bool build_casters(State& s, std::string& error) {
+  if (s.casters_built) return true;
+  const geom::Scene& scene = s.scene;
+  for (const std::vector<uint32_t>& tris : caster_triangles(scene)) {
+    // The caster's own vertices, compacted.
+    std::map<uint32_t, uint32_t> remap;
+    std::vector<float> positions;
+    std::vector<uint32_t> indices;
+    Caster c;
+    c.lo = glm::vec3(1e30f), c.hi = glm::vec3(-1e30f);
+    for (uint32_t t : tris)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = scene.indices[3 * size_t(t) + k];
+        auto it = remap.emplace(v, uint32_t(positions.size() / 3)).first;
+        if (it->second == positions.size() / 3) {
+          const glm::vec3 p(scene.positions[3 * size_t(v)], scene.positions[3 * size_t(v) + 1], scene.positions[3 * size_t(v) + 2]);
+          positions.insert(positions.end(), {p.x, p.y, p.z});
+          c.lo = glm::min(c.lo, p), c.hi = glm::max(c.hi, p);
+        }
+        indices.push_back(it->second);
+      }
+    geom::SilhouetteBuffers b = geom::bake_silhouettes(geom::positions_of(positions.data(), positions.size() / 3),
+                                                       indices.data(), tris.size(), {});
+    c.origin = glm::dvec3(b.planes.origin[0], b.planes.origin[1], b.planes.origin[2]);
+    if (b.adjacency.size() != 6 * tris.size()) {
+      error = "silhouette bake produced no adjacency buffer";
+      return false;
+    }
+    // Edge distance shadow map: welded positions and the adjacency indices.
+    upload(c.welded, b.weld.positions.data(), b.weld.positions.size() * sizeof(float), "caster welded positions");
+    upload(c.adjacency, b.adjacency.data(), b.adjacency.size() * sizeof(uint32_t), "caster adjacency indices");
+    c.adjacency_count = GLsizei(b.adjacency.size());
+    glCreateVertexArrays(1, &c.adjacency_vao.id);
+    glVertexArrayVertexBuffer(c.adjacency_vao, 0, c.welded, 0, 3 * sizeof(float));
+    glVertexArrayElementBuffer(c.adjacency_vao, c.adjacency);
+    attribute(c.adjacency_vao, 0, 3, GL_FLOAT, 0, false);
+    label(GL_VERTEX_ARRAY, c.adjacency_vao, "caster adjacency");
+    // Extended shadow map quads (geom/esm_quads.h layout).
+    upload(c.esm_records, b.esm.quads.data(), b.esm.quads.size() * sizeof(geom::EsmQuad), "caster ESM quads");
+    plane_texture(c.esm_planes, c.esm_plane_buffer, b.esm.planes, "caster ESM planes");
+    c.esm_count = GLsizei(b.esm.quads.size());
+    glCreateVertexArrays(1, &c.esm_vao.id);
+    glVertexArrayVertexBuffer(c.esm_vao, 0, c.esm_records, 0, sizeof(geom::EsmQuad));
+    glVertexArrayBindingDivisor(c.esm_vao, 0, 1);
+    attribute(c.esm_vao, 0, 3, GL_FLOAT, 0, false);
+    attribute(c.esm_vao, 1, 3, GL_FLOAT, 12, false);
+    attribute(c.esm_vao, 2, 1, GL_UNSIGNED_INT, 24, true);
+    attribute(c.esm_vao, 3, 1, GL_UNSIGNED_INT, 28, true);
+    attribute(c.esm_vao, 4, 2, GL_SHORT, 32, false, true);
+    label(GL_VERTEX_ARRAY, c.esm_vao, "caster ESM quads");
+    // Shadow volume (geom/shadow_volume.h layout).
+    upload(c.sv_sides, b.volume.sides.data(), b.volume.sides.size() * sizeof(geom::SvSide), "caster volume sides");
+    upload(c.sv_caps, b.volume.caps.data(), b.volume.caps.size() * sizeof(geom::SvCap), "caster volume caps");
+    plane_texture(c.sv_planes, c.sv_plane_buffer, b.volume.planes, "caster volume planes");
+    c.side_count = GLsizei(b.volume.sides.size()), c.cap_count = GLsizei(b.volume.caps.size());
+    glCreateVertexArrays(1, &c.sides_vao.id);
+    glVertexArrayVertexBuffer(c.sides_vao, 0, c.sv_sides, 0, sizeof(geom::SvSide));
+    glVertexArrayBindingDivisor(c.sides_vao, 0, 1);
+    attribute(c.sides_vao, 0, 3, GL_FLOAT, 0, false);
+    attribute(c.sides_vao, 1, 3, GL_FLOAT, 12, false);
+    attribute(c.sides_vao, 3, 1, GL_UNSIGNED_INT, 24, true);
+    attribute(c.sides_vao, 4, 1, GL_UNSIGNED_INT, 28, true);
+    label(GL_VERTEX_ARRAY, c.sides_vao, "caster volume sides");
+    glCreateVertexArrays(1, &c.caps_vao.id);
+    glVertexArrayVertexBuffer(c.caps_vao, 0, c.sv_caps, 0, sizeof(geom::SvCap));
+    glVertexArrayBindingDivisor(c.caps_vao, 0, 1);
+    attribute(c.caps_vao, 0, 3, GL_FLOAT, 0, false);
+    attribute(c.caps_vao, 1, 3, GL_FLOAT, 12, false);
+    attribute(c.caps_vao, 2, 3, GL_FLOAT, 24, false);
+    attribute(c.caps_vao, 3, 1, GL_UNSIGNED_INT, 36, true);
+    label(GL_VERTEX_ARRAY, c.caps_vao, "caster volume caps");
+    // Inspection lines: boundary, non-manifold and inconsistent edges; degenerate faces.
+    std::vector<float> lines[4];
+    auto vertex = [&](std::vector<float>& out, uint32_t v) {
+      out.insert(out.end(), b.weld.positions.begin() + 3 * size_t(v), b.weld.positions.begin() + 3 * size_t(v) + 3);
+    };
+    for (const geom::Edge& e : b.topology.edges) {
+      const int kind = e.kind == geom::EdgeKind::Boundary ? 0 : e.kind == geom::EdgeKind::NonManifold ? 1
+                       : e.kind == geom::EdgeKind::Inconsistent ? 2 : -1;
+      if (kind >= 0) vertex(lines[kind], e.v0), vertex(lines[kind], e.v1);
+    }
+    const std::vector<uint32_t>& wi = b.weld.indices;
+    for (size_t t = 0; t < b.topology.face_flags.size() && 3 * t + 2 < wi.size(); ++t)
+      if (b.topology.face_flags[t] & (geom::kFaceCollapsed | geom::kFaceZeroArea))
+        for (int k = 0; k < 3; ++k) vertex(lines[3], wi[3 * t + k]), vertex(lines[3], wi[3 * t + (k + 1) % 3]);
+    std::vector<float> all;
+    for (int k = 0; k < 4; ++k) {
+      c.line_first[k] = GLsizei(all.size() / 3);
+      c.line_count[k] = GLsizei(lines[k].size() / 3);
+      all.insert(all.end(), lines[k].begin(), lines[k].end());
+    }
+    upload(c.lines, all.data(), all.size() * sizeof(float), "caster inspection lines");
+    glCreateVertexArrays(1, &c.lines_vao.id);
+    glVertexArrayVertexBuffer(c.lines_vao, 0, c.lines, 0, 3 * sizeof(float));
+    attribute(c.lines_vao, 0, 3, GL_FLOAT, 0, false);
+    label(GL_VERTEX_ARRAY, c.lines_vao, "caster inspection lines");
+    s.casters.push_back(std::move(c));
+  }
+  s.casters_built = true;
+  return true;
+}
+
+// The light in a caster's local frame (geom/face_planes.h).
+glm::vec4 local_light(const Caster& c, const glm::vec4& light) {
+  return glm::vec4(glm::dvec3(light) - c.origin * double(light.w), light.w);
+}
+glm::mat4 local_to_world(const Caster& c) { return glm::translate(glm::dmat4(1), c.origin); }
+
+// May the camera's near-plane rectangle lie inside this caster's shadow volume?
+// Conservative (004, depth-pass vs depth-fail): the volume part that can contain
+// the near rectangle lies within `radius` of the segment from the eye to the
+// light (or the ray towards a directional light); test that segment against the
+// caster's box grown by `radius` (slab test).
+bool camera_may_be_in_volume(const Caster& c, const glm::vec3& eye, float radius, const glm::vec4& light) {
+  const glm::vec3 lo = c.lo - glm::vec3(radius), hi = c.hi + glm::vec3(radius);
+  const glm::vec3 d = light.w != 0 ? glm::vec3(light) / light.w - eye : glm::vec3(light);
+  float t0 = 0, t1 = light.w != 0 ? 1.0f : 1e30f;
+  for (int k = 0; k < 3; ++k) {
+    if (std::fabs(d[k]) < 1e-30f) {
+      if (eye[k] < lo[k] || eye[k] > hi[k]) return false;
+      continue;
+    }
+    float a = (lo[k] - eye[k]) / d[k], b = (hi[k] - eye[k]) / d[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// A depth map from the light with slope-scaled bias: shared by ssm, pcf, esm, edsm.
+bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, PassTimer& timer, std::string& error) {
+  ensure_shadow_map(s, n);
+  GLuint p = program(s, {"depth.vert", "depth.frag"}, error);
+  if (!p) return false;
+  set(p, "u_matrix", light_clip);
+  timer.begin("depth map");
+  glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
+  glViewport(0, 0, n, n);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.5f, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
+  glUseProgram(p);
+  draw_scene(s);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  timer.end();
+  return true;
+}
+
+// The edge target of esm / edsm: an N x N float colour texture + its own depth.
+void ensure_edge_map(State& s, int n, GLenum format) {
+  Target& t = s.edge_map;
+  if (t.width == n && t.height == int(format)) return;
+  t = Target();
+  t.width = n, t.height = int(format);  // height field keeps the format: one target serves both
+  glCreateTextures(GL_TEXTURE_2D, 1, &t.color.id);
+  glTextureStorage2D(t.color, 1, format, n, n);
+  glTextureParameteri(t.color, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(t.color, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  label(GL_TEXTURE, t.color, "edge map");
+  glCreateTextures(GL_TEXTURE_2D, 1, &t.depth.id);
+  glTextureStorage2D(t.depth, 1, GL_DEPTH_COMPONENT32F, n, n);
+  label(GL_TEXTURE, t.depth, "edge map priority depth");
+  glCreateFramebuffers(1, &t.fbo.id);
+  glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.color, 0);
+  glNamedFramebufferTexture(t.fbo, GL_DEPTH_ATTACHMENT, t.depth, 0);
+  label(GL_FRAMEBUFFER, t.fbo, "edge map");
+}
+
+GLuint depth_sampler(State& s) {
+  if (!s.depth_sampler) {
+    glCreateSamplers(1, &s.depth_sampler);
+    glSamplerParameteri(s.depth_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    glSamplerParameteri(s.depth_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(s.depth_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    label(GL_SAMPLER, s.depth_sampler, "depth without comparison");
+  }
+  return s.depth_sampler;
+}
+
+// Edge distance shadow map, distance pass (001, Sect. 4.2.1).
+bool edsm_pass(State& s, const glm::mat4& light_clip, int n, PassTimer& timer, std::string& error) {
+  ensure_edge_map(s, n, GL_R32F);
+  GLuint p = program(s, {"edsm_edges.vert", "edsm_edges.geom", "edsm_edges.frag"}, error);
+  if (!p) return false;
+  set(p, "u_matrix", light_clip);
+  set(p, "u_map_size", float(n));
+  set(p, "u_half_width", 2.0f);
+  set(p, "u_depth", 1);
+  timer.begin("edge distance map");
+  glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
+  glViewport(0, 0, n, n);
+  const float none = 3.0e38f;
+  glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, &none);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glBindTextureUnit(1, s.shadow_map.depth);
+  glBindSampler(1, depth_sampler(s));
+  glUseProgram(p);
+  for (const Caster& c : s.casters) {
+    glBindVertexArray(c.adjacency_vao);
+    glDrawElements(GL_TRIANGLES_ADJACENCY, c.adjacency_count, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindSampler(1, 0);
+  timer.end();
+  return true;
+}
+
+// Extended shadow map, silhouette quad pass (000, Sect. 4.1-4.2): edge distance
+// and edge depth beside the depth map, MAX blending.
+bool esm_pass(State& s, const LightFrame& frame, const LightSetup& light, int n, PassTimer& timer,
+              std::string& error) {
+  const glm::mat4 light_clip = frame.clip();
+  ensure_edge_map(s, n, GL_RGBA32F);
+  GLuint p = program(s, {"esm_quad.vert", "esm_edges.frag"}, error);
+  if (!p) return false;
+  const float texels = 2.5f;  // quad reach beyond the edge, in texels
+  set(p, "u_extrude_scale", 2.0f * texels / (float(n) * std::fabs(frame.proj[0][0])));
+  set(p, "u_planes", 2);
+  set(p, "u_depth", 1);
+  set(p, "u_map_size", float(n));
+  timer.begin("extended map quads");
+  glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
+  glViewport(0, 0, n, n);
+  const float zero[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, zero);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_MAX);  // 000 Sect. 4.1: MAX of the inverted distance and of the edge depth
+  glBindTextureUnit(1, s.shadow_map.depth);
+  glBindSampler(1, depth_sampler(s));
+  glUseProgram(p);
+  for (const Caster& c : s.casters) {
+    set(p, "u_light_view_proj", light_clip * local_to_world(c));
+    set(p, "u_light", local_light(c, light.position));
+    glBindTextureUnit(2, c.esm_planes);
+    glBindVertexArray(c.esm_vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
+  }
+  glBlendEquation(GL_FUNC_ADD);
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+  glBindSampler(1, 0);
+  timer.end();
+  return true;
 }
 
 // The shared shading pass: scene.vert + shade.frag + the technique's lookup shader.
@@ -330,12 +668,112 @@ GLuint shading_program(State& s, const std::string& lookup, const View& view, co
   return p;
 }
 
+// Stencil shadow volumes (004; geom/shadow_volume.h): the volume of every caster,
+// depth-fail (sides and caps) or depth-pass (sides), per caster.
+bool volume_pass(State& s, const View& view, const glm::mat4& view_proj, const LightSetup& light, Technique t,
+                 float near_radius, PassTimer& timer, std::string& error) {
+  GLuint p = program(s, {"shadow_volume.vert", "volume.frag"}, error);
+  if (!p) return false;
+  set(p, "u_planes", 2);
+  timer.begin("stencil volumes");
+  glEnable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 0, 0xff);
+  glStencilMask(0xff);
+  glDepthMask(GL_FALSE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_DEPTH_CLAMP);
+  glDepthFunc(GL_LESS);
+  glUseProgram(p);
+  for (const Caster& c : s.casters) {
+    const bool zfail = t == Technique::SvZFail ||
+                       (t == Technique::Sv && camera_may_be_in_volume(c, view.eye, near_radius, light.position));
+    set(p, "u_view_proj", view_proj * local_to_world(c));
+    set(p, "u_light", local_light(c, light.position));
+    glBindTextureUnit(2, c.sv_planes);
+    if (zfail) {  // back faces increment, front faces decrement where the depth test fails
+      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
+      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
+    } else {  // front faces increment, back faces decrement where it passes
+      glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
+      glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
+    }
+    set(p, "u_caps", 0);
+    glBindVertexArray(c.sides_vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.side_count);
+    if (zfail) {
+      set(p, "u_caps", 1);
+      glBindVertexArray(c.caps_vao);
+      glDrawArraysInstanced(GL_TRIANGLES, 0, 6, c.cap_count);
+    }
+  }
+  glDisable(GL_DEPTH_CLAMP);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  timer.end();
+  return true;
+}
+
+// Inspection overlay: topology problems of the mesh and the silhouette quads of
+// the current light, drawn over the shaded frame.
+bool inspection_pass(State& s, const glm::mat4& view_proj, const LightSetup& light, int w, int h, PassTimer& timer,
+                     std::string& error) {
+  GLuint lines = program(s, {"inspect.vert", "inspect.frag"}, error);
+  GLuint quads = lines ? program(s, {"esm_quad.vert", "inspect.frag"}, error) : 0;
+  if (!quads) return false;
+  timer.begin("inspection");
+  glDisable(GL_STENCIL_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_POLYGON_OFFSET_LINE);
+  glPolygonOffset(-1.0f, -4.0f);
+  const glm::vec4 colours[4] = {{1.0f, 0.85f, 0.1f, 1}, {1.0f, 0.1f, 0.1f, 1}, {0.9f, 0.2f, 1.0f, 1}, {0.1f, 0.9f, 1.0f, 1}};
+  glUseProgram(lines);
+  set(lines, "u_matrix", view_proj);
+  for (const Caster& c : s.casters)
+    for (int k = 0; k < 4; ++k) {
+      set(lines, "u_colour", colours[k]);
+      glBindVertexArray(c.lines_vao);
+      glDrawArrays(GL_LINES, c.line_first[k], c.line_count[k]);
+    }
+  // Silhouette quads of the current light, extruded in the camera's clip space
+  // (about 3 pixels wide); only the quads that open for this light have area.
+  glUseProgram(quads);
+  set(quads, "u_colour", glm::vec4(1.0f, 0.45f, 0.0f, 1));
+  set(quads, "u_planes", 2);
+  set(quads, "u_extrude_scale", 2.0f * 3.0f / (float(std::max(w, h)) * std::fabs(view_proj[1][1]) + 1e-30f));
+  for (const Caster& c : s.casters) {
+    set(quads, "u_light_view_proj", view_proj * local_to_world(c));
+    set(quads, "u_light", local_light(c, light.position));
+    glBindTextureUnit(2, c.esm_planes);
+    glBindVertexArray(c.esm_vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
+  }
+  glDisable(GL_POLYGON_OFFSET_LINE);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+  timer.end();
+  return true;
+}
+
+bool needs_casters(const FrameSettings& fs) {
+  switch (fs.technique) {
+    case Technique::Esm:
+    case Technique::Edsm:
+    case Technique::Sv:
+    case Technique::SvZPass:
+    case Technique::SvZFail:
+      return true;
+    default:
+      return fs.inspect;
+  }
+}
+
 // Draws one frame into the framebuffer `fbo` of w x h.
 bool draw_frame(State& s, const View& view, const LightSetup& light, const FrameSettings& fs, GLuint fbo, int w,
                 int h, PassTimer& timer, std::string& error) {
   const int n = std::clamp(fs.shadow_map_size, 16, 16384);
-  const glm::mat4 camera_proj =
-      glm::infinitePerspective(glm::radians(view.fovy_deg), float(w) / float(h), view.near_plane);
+  const float aspect = float(w) / float(h);
+  const glm::mat4 camera_proj = glm::infinitePerspective(glm::radians(view.fovy_deg), aspect, view.near_plane);
   const glm::mat4 view_proj = camera_proj * glm::lookAt(view.eye, view.target, view.up);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
@@ -345,33 +783,33 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  if (needs_casters(fs)) {
+    timer.begin("silhouette buffers (first use)");
+    const bool ok = build_casters(s, error);
+    timer.end();
+    if (!ok) return false;
+  }
 
-  std::string lookup;
-  GLuint shadow_texture = 0;
-  glm::mat4 light_clip(1);
-  switch (fs.technique) {
+  std::string lookup = "lookup_none.frag";
+  GLuint shadow_texture = 0, second_texture = 0;
+  LightFrame frame;
+  const Technique t = fs.technique;
+  const bool volumes = t == Technique::Sv || t == Technique::SvZPass || t == Technique::SvZFail;
+  switch (t) {
     case Technique::Ssm:
-    case Technique::Pcf: {
-      ensure_shadow_map(s, n);
-      light_clip = light_matrix(s, light);
-      GLuint p = program(s, {"depth.vert", "depth.frag"}, error);
-      if (!p) return false;
-      set(p, "u_matrix", light_clip);
-      timer.begin("shadow map");
-      glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
-      glViewport(0, 0, n, n);
-      glClear(GL_DEPTH_BUFFER_BIT);
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(1.5f, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
-      glUseProgram(p);
-      draw_scene(s);
-      glDisable(GL_POLYGON_OFFSET_FILL);
-      timer.end();
-      const GLint filter = fs.technique == Technique::Pcf ? GL_LINEAR : GL_NEAREST;
+    case Technique::Pcf:
+    case Technique::Esm:
+    case Technique::Edsm: {
+      frame = light_frame(s, light);
+      if (!depth_map_pass(s, frame.clip(), n, timer, error)) return false;
+      if (t == Technique::Edsm && !edsm_pass(s, frame.clip(), n, timer, error)) return false;
+      if (t == Technique::Esm && !esm_pass(s, frame, light, n, timer, error)) return false;
+      const GLint filter = t == Technique::Ssm ? GL_NEAREST : GL_LINEAR;
       glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MIN_FILTER, filter);
       glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MAG_FILTER, filter);
       shadow_texture = s.shadow_map.depth;
-      lookup = "lookup_shadow_map.frag";
+      second_texture = t == Technique::Edsm || t == Technique::Esm ? GLuint(s.edge_map.color) : 0;
+      lookup = t == Technique::Edsm ? "lookup_edsm.frag" : t == Technique::Esm ? "lookup_esm.frag" : "lookup_shadow_map.frag";
       break;
     }
     case Technique::Cube: {
@@ -407,33 +845,71 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
       lookup = "lookup_cube.frag";
       break;
     }
+    case Technique::Sv:
+    case Technique::SvZPass:
+    case Technique::SvZFail:
+      break;
     default:
-      error = std::string("technique ") + technique_name(fs.technique) + " is not available in this build";
+      error = std::string("technique ") + technique_name(t) + " is not available in this build";
       return false;
   }
 
   GLuint p = shading_program(s, lookup, view, view_proj, light, fs.output, error);
   if (!p) return false;
-  set(p, "u_light_matrix", light_clip);
+  set(p, "u_light_matrix", frame.clip());
   set(p, "u_shadow_map", 0);
-  set(p, "u_pcf", fs.technique == Technique::Pcf ? 1 : 0);
-  set(p, "u_cube_bias", 0.97f);                             // 003, 12.3.7: fDistSquared * DepthBias
-  set(p, "u_cube_filter", 1.0f / float(n));                 // 003, 12.4: tap offsets of about one texel
+  set(p, "u_distance_map", 1);
+  set(p, "u_edge_map", 1);
+  set(p, "u_pcf", t == Technique::Pcf ? 1 : 0);
+  set(p, "u_cube_bias", 0.97f);             // 003, 12.3.7: fDistSquared * DepthBias
+  set(p, "u_cube_filter", 1.0f / float(n));  // 003, 12.4: tap offsets of about one texel
   glBindTextureUnit(0, shadow_texture);
-  timer.begin("shading");
+  glBindTextureUnit(1, second_texture);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   glViewport(0, 0, w, h);
-  const float background[4] = {0.5f, 0.5f, 0.5f, 1.0f};  // mask: 128 where no geometry is
-  const float sky[4] = {0.18f, 0.2f, 0.24f, 1.0f};
-  glClearColor(fs.output == Output::Mask ? background[0] : sky[0], fs.output == Output::Mask ? background[1] : sky[1],
-               fs.output == Output::Mask ? background[2] : sky[2], 1.0f);
+  const float grey = 0.5f;  // mask: 128 where no geometry is
+  if (fs.output == Output::Mask) glClearColor(grey, grey, grey, 1.0f);
+  else glClearColor(0.18f, 0.2f, 0.24f, 1.0f);
   glClearDepth(1.0);
   glClearStencil(0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   glUseProgram(p);
-  draw_scene(s);
-  timer.end();
+  if (volumes) {
+    // 1. depth and the unlit colour; the scene is pushed back a little so that
+    //    caps lying on lit faces pass the depth test (004: polygon offset).
+    timer.begin("depth + ambient");
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.0f, 2.0f);
+    set(p, "u_ambient_only", 1);
+    draw_scene(s);
+    timer.end();
+    // 2. stencil counts.
+    const float near_half_h = view.near_plane * std::tan(glm::radians(view.fovy_deg) * 0.5f);
+    const float near_radius = near_half_h * std::sqrt(1.0f + aspect * aspect);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    if (!volume_pass(s, view, view_proj, light, t, near_radius, timer, error)) return false;
+    // 3. lit where the count is zero.
+    timer.begin("lit shading");
+    glEnable(GL_POLYGON_OFFSET_FILL);  // the same offset as pass 1: GL_EQUAL holds
+    glUseProgram(p);
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    glDepthFunc(GL_EQUAL);
+    set(p, "u_ambient_only", 0);
+    draw_scene(s);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    timer.end();
+  } else {
+    timer.begin("shading");
+    draw_scene(s);
+    timer.end();
+  }
   glBindTextureUnit(0, 0);
+  glBindTextureUnit(1, 0);
+  if (fs.inspect && !inspection_pass(s, view_proj, light, w, h, timer, error)) return false;
   return true;
 }
 
@@ -442,6 +918,9 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
 StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, std::string& error) {
   StatePtr s(new State);
   s->shader_dir = shader_dir;
+  s->scene.positions = scene.positions;
+  s->scene.indices = scene.indices;
+  s->scene.sources = scene.sources;
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   s->renderer = renderer ? renderer : "?";
   const bool software = std::strstr(s->renderer.c_str(), "llvmpipe") || std::strstr(s->renderer.c_str(), "softpipe") ||
