@@ -84,6 +84,12 @@ inline void add_pipe(geom::Scene& s, glm::vec3 a, glm::vec3 b, float radius, int
   }
 }
 
+// Marks the triangles from `first` on as one caster (a glTF mesh of its own), so
+// that techniques working per caster (shadow volumes) see separate objects.
+inline void tag_caster(geom::Scene& s, size_t first, uint32_t mesh) {
+  for (size_t t = first; t < s.sources.size(); ++t) s.sources[t].mesh = mesh;
+}
+
 inline geom::ReferenceCamera to_reference(const viewer::View& v) {
   geom::ReferenceCamera c;
   for (int k = 0; k < 3; ++k) c.eye[k] = v.eye[k], c.target[k] = v.target[k], c.up[k] = v.up[k];

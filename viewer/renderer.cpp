@@ -875,11 +875,13 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
   glUseProgram(p);
   if (volumes) {
-    // 1. depth and the unlit colour; the scene is pushed back a little so that
-    //    caps lying on lit faces pass the depth test (004: polygon offset).
+    // 1. depth and the unlit colour. The scene is pulled a little towards the
+    //    camera (004: polygon offset) so that volume faces lying on a surface
+    //    (the near cap of a lit face, side quads at its edges) count as behind
+    //    it: a point is never shadowed by the face it lies on.
     timer.begin("depth + ambient");
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(1.0f, 2.0f);
+    glPolygonOffset(0.0f, -8.0f);
     set(p, "u_ambient_only", 1);
     draw_scene(s);
     timer.end();
