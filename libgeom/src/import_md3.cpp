@@ -1,0 +1,146 @@
+// Quake 3 MD3 model import (IDP3 version 15, as in Debian's openarena-081-players).
+//
+// Seed 004_3832d04cb6bd7525.txt, section 2.5: a model is several triangle
+// surfaces, each stored once per animation frame. Imported: every surface at
+// frame ImportOptions::md3_frame (default 0, the first), vertex positions
+// int16 times the format's fixed-point scale 1/64 (MD3_XYZ_SCALE), in model
+// units, Z up as in the file. Tags (attachment points), normals, texture
+// coordinates and skins are ignored.
+//
+// Layout: a 108-byte header (ident, version, name[64], flags, frame, tag,
+// surface and skin counts, frame/tag/surface/end offsets); surfaces chained
+// from the header's surface offset, each with its own 108-byte header whose
+// offsets are relative to the surface start: triangles (3 x int32), vertices
+// (frames x vertices x {int16 x, y, z, packed normal}), and the next surface
+// at the end offset.
+//
+// Output: triangles reversed to counter-clockwise-front (MD3 stores them
+// clockwise, like BSP files: the closed surfaces of OpenArena's players have
+// negative signed volume as stored); TriangleSource::mesh = surface index.
+// Every offset, count and index is checked against the bytes before use.
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "importers.h"
+
+namespace geom::detail {
+namespace {
+
+constexpr size_t kHeaderSize = 108, kSurfaceHeaderSize = 108, kVertexSize = 8;
+constexpr float kXyzScale = 1.0f / 64.0f;
+
+int32_t i32(const unsigned char* p) {
+  uint32_t u = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+  int32_t v;
+  std::memcpy(&v, &u, 4);
+  return v;
+}
+int16_t i16(const unsigned char* p) {
+  uint16_t u = uint16_t(p[0] | p[1] << 8);
+  int16_t v;
+  std::memcpy(&v, &u, 2);
+  return v;
+}
+
+// [offset, offset + count * record) inside [0, limit)?
+bool span_inside(int64_t offset, int64_t count, uint64_t record, uint64_t limit) {
+  if (offset < 0 || count < 0 || uint64_t(offset) > limit) return false;
+  return uint64_t(count) <= (limit - uint64_t(offset)) / record;
+}
+
+}  // namespace
+
+bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
+  if (in.size < kHeaderSize) {
+    error = "truncated: " + std::to_string(in.size) + " bytes, shorter than the 108-byte MD3 header";
+    return false;
+  }
+  if (std::memcmp(in.data, "IDP3", 4) != 0) {
+    error = "not an MD3 model (no 'IDP3' magic)";
+    return false;
+  }
+  if (i32(in.data + 4) != 15) {
+    error = "MD3 version " + std::to_string(i32(in.data + 4)) + " is not supported (expected 15)";
+    return false;
+  }
+  const int32_t frames = i32(in.data + 76), surfaces = i32(in.data + 84), surface_offset = i32(in.data + 100);
+  const int frame = in.options.md3_frame;
+  if (frames <= 0) {
+    error = "the model has " + std::to_string(frames) + " frames";
+    return false;
+  }
+  if (frame < 0 || frame >= frames) {
+    error = "frame " + std::to_string(frame) + " requested, the model has " + std::to_string(frames) +
+            " (0 to " + std::to_string(frames - 1) + ")";
+    return false;
+  }
+  if (surfaces < 0 || !span_inside(surface_offset, surfaces, kSurfaceHeaderSize, in.size)) {
+    error = std::to_string(surfaces) + " surfaces at offset " + std::to_string(surface_offset) +
+            " do not fit in the file (" + std::to_string(in.size) + " bytes)";
+    return false;
+  }
+  uint64_t at = uint64_t(surface_offset);
+  for (int32_t s = 0; s < surfaces; ++s) {
+    const std::string name = "surface " + std::to_string(s);
+    if (!span_inside(int64_t(at), 1, kSurfaceHeaderSize, in.size)) {
+      error = name + " header at offset " + std::to_string(at) + " lies outside the file";
+      return false;
+    }
+    const unsigned char* sp = in.data + at;
+    const uint64_t room = in.size - at;  // bytes from the surface start to the end of the file
+    if (std::memcmp(sp, "IDP3", 4) != 0) {
+      error = name + " at offset " + std::to_string(at) + " has no 'IDP3' magic";
+      return false;
+    }
+    const int32_t surface_frames = i32(sp + 72), vertices = i32(sp + 80), triangles = i32(sp + 84);
+    const int32_t tri_offset = i32(sp + 88), xyz_offset = i32(sp + 100), end_offset = i32(sp + 104);
+    if (surface_frames != frames) {
+      error = name + " has " + std::to_string(surface_frames) + " frames, the model " + std::to_string(frames);
+      return false;
+    }
+    if (!span_inside(tri_offset, triangles, 12, room)) {
+      error = name + ": " + std::to_string(triangles) + " triangles at offset " + std::to_string(tri_offset) +
+              " lie outside the file";
+      return false;
+    }
+    if (vertices < 0 || !span_inside(xyz_offset, int64_t(frames) * vertices, kVertexSize, room)) {
+      error = name + ": " + std::to_string(frames) + " frames of " + std::to_string(vertices) +
+              " vertices at offset " + std::to_string(xyz_offset) + " lie outside the file";
+      return false;
+    }
+    if (end_offset < int32_t(kSurfaceHeaderSize) || uint64_t(end_offset) > room) {
+      error = name + " ends at offset " + std::to_string(end_offset) + " (relative), outside [108, " +
+              std::to_string(room) + "]";
+      return false;
+    }
+    const size_t base = out.vertex_count();
+    if (base + size_t(vertices) > 0xffffffffu) {
+      error = "more than 2^32 vertices";
+      return false;
+    }
+    const unsigned char* tp = sp + tri_offset;
+    for (int32_t t = 0; t < triangles; ++t) {
+      int32_t v[3] = {i32(tp + 12 * size_t(t)), i32(tp + 12 * size_t(t) + 4), i32(tp + 12 * size_t(t) + 8)};
+      for (int j = 0; j < 3; ++j) {
+        if (v[j] < 0 || v[j] >= vertices) {
+          error = name + " triangle " + std::to_string(t) + " uses vertex " + std::to_string(v[j]) +
+                  ", out of range (" + std::to_string(vertices) + " vertices)";
+          return false;
+        }
+      }
+      out.indices.insert(out.indices.end(), {uint32_t(base + size_t(v[0])), uint32_t(base + size_t(v[2])),
+                                             uint32_t(base + size_t(v[1]))});
+      out.sources.push_back({0, uint32_t(s), TriangleSource::kNone, TriangleSource::kNone});
+    }
+    const unsigned char* vp = sp + xyz_offset + size_t(frame) * size_t(vertices) * kVertexSize;
+    out.positions.reserve(out.positions.size() + size_t(vertices) * 3);
+    for (int32_t v = 0; v < vertices; ++v) {
+      for (int k = 0; k < 3; ++k) out.positions.push_back(float(i16(vp + kVertexSize * size_t(v) + 2 * k)) * kXyzScale);
+    }
+    at += uint64_t(end_offset);
+  }
+  return true;
+}
+
+}  // namespace geom::detail

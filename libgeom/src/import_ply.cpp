@@ -1,0 +1,420 @@
+// Stanford PLY import: ascii, binary_little_endian, binary_big_endian.
+//
+// Header: `ply`, `format F 1.0`, `comment` / `obj_info` lines, then
+// `element NAME COUNT` each followed by its `property TYPE NAME` or
+// `property list COUNT_TYPE ITEM_TYPE NAME` lines, then `end_header` (other
+// header lines are ignored with a warning). Header
+// lines may end in LF, CRLF or CR alone (binary data starts right after the
+// end_header line, whose line end is taken to be the one the `ply` line used).
+// Scalar types: char uchar short ushort int uint float double and their
+// int8 ... float64 aliases.
+//
+// Used: the first `vertex` element's x, y, z (any scalar type), the first
+// `face` element's list `vertex_indices` (or `vertex_index`), polygons fanned
+// from their first corner (fewer than 3 corners: skipped, one warning), and
+// the first `tristrips` element's list `vertex_indices` (-1 restarts a strip;
+// the degenerate triangles that stitch strips are dropped). Everything else
+// is read past. Indices are 0-based and checked against the vertex count the
+// header declares: "face 12: vertex index 40 out of range (8 vertices)".
+//
+// Hostile input: before an element is read, its count times the smallest
+// size one entry can take (binary: the sum of its scalar sizes; ascii: 2
+// bytes per property) is checked against the bytes left, and each list's
+// length against the bytes left, so a header claiming billions of entries is
+// refused before any allocation.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "importers.h"
+#include "text_scan.h"
+
+namespace geom::detail {
+namespace {
+
+enum class PlyType : uint8_t { I8, U8, I16, U16, I32, U32, F32, F64 };
+enum class Format : uint8_t { Ascii, LittleEndian, BigEndian };
+
+bool parse_type(std::string_view s, PlyType& t) {
+  static const struct {
+    const char* a;
+    const char* b;
+    PlyType t;
+  } names[] = {{"char", "int8", PlyType::I8},     {"uchar", "uint8", PlyType::U8},
+               {"short", "int16", PlyType::I16},  {"ushort", "uint16", PlyType::U16},
+               {"int", "int32", PlyType::I32},    {"uint", "uint32", PlyType::U32},
+               {"float", "float32", PlyType::F32}, {"double", "float64", PlyType::F64}};
+  for (const auto& n : names)
+    if (s == n.a || s == n.b) {
+      t = n.t;
+      return true;
+    }
+  return false;
+}
+
+size_t type_size(PlyType t) {
+  static const size_t sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+  return sizes[size_t(t)];
+}
+
+struct Property {
+  std::string name;
+  PlyType type = PlyType::F32;        // item type for lists
+  bool list = false;
+  PlyType count_type = PlyType::U8;   // lists only
+};
+
+struct Element {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<Property> props;
+  uint64_t header_line = 0;
+};
+
+// Reads one scalar at a time from the body, in any of the three formats.
+struct Body {
+  const unsigned char* p;
+  const unsigned char* end;
+  Format format;
+
+  uint64_t left() const { return uint64_t(end - p); }
+
+  bool read(PlyType t, double& v) {
+    if (format == Format::Ascii) {
+      const char* c = reinterpret_cast<const char*>(p);
+      const char* e = reinterpret_cast<const char*>(end);
+      std::string_view tok = next_word(c, e);
+      const char* q = tok.data();
+      if (tok.empty() || !scan_double(q, q + tok.size(), v)) return false;
+      p = reinterpret_cast<const unsigned char*>(c);
+      // Integer types: a whole number within the type's range.
+      static const double lo[] = {-128, 0, -32768, 0, -2147483648.0, 0};
+      static const double hi[] = {127, 255, 32767, 65535, 2147483647.0, 4294967295.0};
+      if (t != PlyType::F32 && t != PlyType::F64 &&
+          !(v == std::floor(v) && v >= lo[size_t(t)] && v <= hi[size_t(t)]))
+        return false;
+      return true;
+    }
+    const size_t n = type_size(t);
+    if (left() < n) return false;
+    unsigned char b[8];
+    for (size_t i = 0; i < n; ++i) b[i] = format == Format::LittleEndian ? p[i] : p[n - 1 - i];
+    p += n;
+    // b now holds the value little-endian; assemble it portably.
+    uint64_t u = 0;
+    for (size_t i = 0; i < n; ++i) u |= uint64_t(b[i]) << (8 * i);
+    switch (t) {
+      case PlyType::I8: v = double(int8_t(uint8_t(u))); break;
+      case PlyType::U8: v = double(uint8_t(u)); break;
+      case PlyType::I16: v = double(int16_t(uint16_t(u))); break;
+      case PlyType::U16: v = double(uint16_t(u)); break;
+      case PlyType::I32: v = double(int32_t(uint32_t(u))); break;
+      case PlyType::U32: v = double(uint32_t(u)); break;
+      case PlyType::F32: {
+        uint32_t w = uint32_t(u);
+        float f;
+        std::memcpy(&f, &w, 4);
+        v = f;
+        break;
+      }
+      case PlyType::F64: std::memcpy(&v, &u, 8); break;
+    }
+    return true;
+  }
+};
+
+// Header lines: split at LF, CRLF or CR.
+struct HeaderLines {
+  const char* p;
+  const char* end;
+  uint64_t line = 0;
+  std::string_view eol;  // the line end the first line used
+
+  bool next(std::string_view& out) {
+    if (p >= end) return false;
+    const char* b = p;
+    while (p < end && !is_eol(*p)) ++p;
+    out = std::string_view(b, size_t(p - b));
+    const char* e = p;
+    if (p < end) {
+      if (*p == '\r' && p + 1 < end && p[1] == '\n') ++p;
+      ++p;
+    }
+    if (eol.empty()) eol = std::string_view(e, size_t(p - e));
+    ++line;
+    return true;
+  }
+};
+
+// A value for a message: whole numbers without a fraction.
+std::string show(double v) {
+  if (std::fabs(v) < 1e15 && v == std::floor(v)) return std::to_string(int64_t(v));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string number_or_end(const Body& body) {
+  const unsigned char* p = body.p;
+  if (body.format == Format::Ascii)
+    while (p < body.end && is_white(char(*p))) ++p;
+  return p >= body.end ? "file ends early" : "bad value";
+}
+
+}  // namespace
+
+bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
+  const char* text = reinterpret_cast<const char*>(in.data);
+  HeaderLines h{text, text + in.size, 0, std::string_view()};
+  std::string_view line, first;
+  if (h.next(line)) {
+    const char* c = line.data();
+    first = next_token(c, c + line.size());
+  }
+  if (first != "ply") {
+    if (looks_like_utf16(in.data, in.size)) error = "UTF-16 or UTF-32 text is not supported (save the PLY as ASCII)";
+    else error = in.size == 0 ? "empty file" : "not a PLY file (starts with " + quote_token(first) + ", not 'ply')";
+    return false;
+  }
+
+  // Header.
+  Format format = Format::Ascii;
+  bool have_format = false, have_end = false;
+  std::vector<Element> elements;
+  uint64_t unknown_lines = 0;
+  while (!have_end && h.next(line)) {
+    const char* c = line.data();
+    const char* e = c + line.size();
+    std::string_view kw = next_token(c, e);
+    const std::string at = "header line " + std::to_string(h.line) + ": ";
+    if (kw.empty() || kw == "comment" || kw == "obj_info") continue;
+    if (kw == "format") {
+      std::string_view f = next_token(c, e);
+      if (f == "ascii") format = Format::Ascii;
+      else if (f == "binary_little_endian") format = Format::LittleEndian;
+      else if (f == "binary_big_endian") format = Format::BigEndian;
+      else {
+        error = at + "unknown format " + quote_token(f);
+        return false;
+      }
+      have_format = true;
+    } else if (kw == "element") {
+      Element el;
+      el.name = std::string(next_token(c, e));
+      std::string_view n = next_token(c, e);
+      const char* q = n.data();
+      int64_t count = -1;
+      if (el.name.empty() || n.empty() || !scan_int(q, n.data() + n.size(), count) || count < 0) {
+        error = at + "element needs a name and a count";
+        return false;
+      }
+      el.count = uint64_t(count);
+      el.header_line = h.line;
+      elements.push_back(std::move(el));
+    } else if (kw == "property") {
+      if (elements.empty()) {
+        error = at + "property before any element";
+        return false;
+      }
+      Property prop;
+      std::string_view t = next_token(c, e);
+      if (t == "list") {
+        prop.list = true;
+        std::string_view ct = next_token(c, e);
+        if (!parse_type(ct, prop.count_type) || prop.count_type == PlyType::F32 || prop.count_type == PlyType::F64) {
+          error = at + "bad list count type " + quote_token(ct);
+          return false;
+        }
+        t = next_token(c, e);
+      }
+      if (!parse_type(t, prop.type)) {
+        error = at + "unknown property type " + quote_token(t);
+        return false;
+      }
+      prop.name = std::string(next_token(c, e));
+      if (prop.name.empty()) {
+        error = at + "property without a name";
+        return false;
+      }
+      elements.back().props.push_back(std::move(prop));
+    } else if (kw == "end_header") {
+      have_end = true;
+    } else {
+      ++unknown_lines;  // e.g. Blender 2.4's bare "Created by ..." line
+    }
+  }
+  if (!have_end) {
+    error = "header has no end_header line";
+    return false;
+  }
+  if (!have_format) {
+    error = "header has no format line";
+    return false;
+  }
+  if (unknown_lines)
+    out.warnings.push_back(in.name + ": " + std::to_string(unknown_lines) + " unknown PLY header lines ignored");
+  // In binary files the body starts right after end_header's line end; with
+  // CR-only headers a following '\n' byte is data, not part of the line end.
+  const char* body_start = h.p;
+  if (format != Format::Ascii && h.eol == "\r" && body_start > text && body_start[-1] == '\n' &&
+      body_start - 2 >= text && body_start[-2] == '\r')
+    --body_start;
+
+  Body body{reinterpret_cast<const unsigned char*>(body_start), in.data + in.size, format};
+  const size_t base = out.vertex_count();
+  uint64_t vertex_count = 0;
+  for (const Element& el : elements)
+    if (el.name == "vertex") {
+      vertex_count = el.count;
+      break;
+    }
+  if (base + vertex_count > 0xffffffffu) {
+    error = "more than 4294967295 vertices";
+    return false;
+  }
+
+  bool done_vertex = false, done_face = false, done_strips = false;
+  uint64_t short_faces = 0;
+  std::vector<uint32_t> poly;
+  for (const Element& el : elements) {
+    if (el.count == 0) continue;
+    if (el.props.empty()) continue;  // nothing to read, however many entries
+    uint64_t min_bytes = 0;
+    for (const Property& p : el.props)
+      min_bytes += format == Format::Ascii ? 2 : type_size(p.list ? p.count_type : p.type);
+    if (el.count > (body.left() + 1) / min_bytes) {
+      error = "element '" + el.name + "' (header line " + std::to_string(el.header_line) + ") claims " +
+              std::to_string(el.count) + " entries of at least " + std::to_string(min_bytes) + " bytes but only " +
+              std::to_string(body.left()) + " bytes are left";
+      return false;
+    }
+    // Role of each property in this element.
+    enum Role : uint8_t { Skip, X, Y, Z, Indices };
+    const bool is_vertex = el.name == "vertex" && !done_vertex;
+    const bool is_face = el.name == "face" && !done_face;
+    const bool is_strips = el.name == "tristrips" && !done_strips;
+    std::vector<Role> roles(el.props.size(), Skip);
+    int found = 0;
+    for (size_t i = 0; i < el.props.size(); ++i) {
+      const Property& p = el.props[i];
+      if (is_vertex && !p.list && (p.name == "x" || p.name == "y" || p.name == "z")) {
+        roles[i] = p.name == "x" ? X : p.name == "y" ? Y : Z;
+        found |= 1 << (roles[i] - X);
+      }
+      if ((is_face || is_strips) && p.list && (p.name == "vertex_indices" || p.name == "vertex_index") &&
+          !(found & 8)) {
+        roles[i] = Indices;
+        found |= 8;
+      }
+    }
+    if (is_vertex) {
+      if (found != 7) {
+        error = "vertex element has no x, y and z properties";
+        return false;
+      }
+      out.positions.reserve(out.positions.size() + 3 * el.count);
+      done_vertex = true;
+    }
+    if ((is_face || is_strips) && !(found & 8)) {
+      out.warnings.push_back(in.name + ": element '" + el.name +
+                             "' has no list property vertex_indices; skipped");
+    }
+    if (is_face && (found & 8)) {
+      out.indices.reserve(out.indices.size() + 3 * std::min<uint64_t>(el.count, body.left() / 4));
+      done_face = true;
+    }
+    if (is_strips && (found & 8)) done_strips = true;
+
+    const char* what = is_vertex ? "vertex " : is_face ? "face " : is_strips ? "strip " : nullptr;
+    for (uint64_t k = 0; k < el.count; ++k) {
+      auto where = [&]() {
+        return (what ? std::string(what) : "element '" + el.name + "' entry ") + std::to_string(k) + ": ";
+      };
+      float xyz[3] = {0, 0, 0};
+      for (size_t i = 0; i < el.props.size(); ++i) {
+        const Property& p = el.props[i];
+        double v;
+        if (!p.list) {
+          if (!body.read(p.type, v)) {
+            error = where() + number_or_end(body) + " for property '" + p.name + "'";
+            return false;
+          }
+          if (roles[i] >= X && roles[i] <= Z) xyz[roles[i] - X] = to_float(v);
+          continue;
+        }
+        double nd;
+        if (!body.read(p.count_type, nd) || nd < 0) {
+          error = where() + number_or_end(body) + " for the length of list '" + p.name + "'";
+          return false;
+        }
+        const uint64_t n = uint64_t(nd);
+        const uint64_t item_bytes = format == Format::Ascii ? 1 : type_size(p.type);
+        if (n > (body.left() + 1) / item_bytes) {
+          error = where() + "list '" + p.name + "' claims " + std::to_string(n) + " items but only " +
+                  std::to_string(body.left()) + " bytes are left";
+          return false;
+        }
+        if (roles[i] != Indices) {
+          for (uint64_t j = 0; j < n; ++j)
+            if (!body.read(p.type, v)) {
+              error = where() + number_or_end(body) + " in list '" + p.name + "'";
+              return false;
+            }
+          continue;
+        }
+        poly.clear();
+        for (uint64_t j = 0; j < n; ++j) {
+          if (!body.read(p.type, v)) {
+            error = where() + number_or_end(body) + " in list '" + p.name + "'";
+            return false;
+          }
+          if (is_strips && v == -1) {
+            poly.push_back(0xffffffffu);  // restart
+            continue;
+          }
+          if (!(v >= 0 && v < double(vertex_count) && v == std::floor(v))) {
+            error = where() + "vertex index " + show(v) +
+                    " out of range (" +
+                    std::to_string(vertex_count) + " vertices)";
+            return false;
+          }
+          poly.push_back(uint32_t(base + uint64_t(v)));
+        }
+        if (is_face) {
+          if (poly.size() < 3) ++short_faces;
+          for (size_t j = 1; j + 1 < poly.size(); ++j) {
+            out.indices.insert(out.indices.end(), {poly[0], poly[j], poly[j + 1]});
+            out.sources.push_back(TriangleSource{});
+          }
+        } else {  // strips: a window of 3, alternating winding, restarted at -1
+          size_t start = 0;
+          for (size_t j = 0; j < poly.size(); ++j) {
+            if (poly[j] == 0xffffffffu) {
+              start = j + 1;
+              continue;
+            }
+            if (j < start + 2) continue;
+            uint32_t a = poly[j - 2], b = poly[j - 1], c = poly[j];
+            if ((j - start) % 2 == 1) std::swap(a, b);
+            if (a == b || b == c || a == c) continue;
+            out.indices.insert(out.indices.end(), {a, b, c});
+            out.sources.push_back(TriangleSource{});
+          }
+        }
+      }
+      if (is_vertex) out.positions.insert(out.positions.end(), xyz, xyz + 3);
+    }
+  }
+  if (!done_face && !done_strips)
+    out.warnings.push_back(in.name + ": no face element: no triangles (a point cloud?)");
+  if (short_faces)
+    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) +
+                           " faces with fewer than 3 vertices skipped");
+  return true;
+}
+
+}  // namespace geom::detail
