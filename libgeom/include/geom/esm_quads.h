@@ -17,7 +17,10 @@
 // directions, so the edge gets two quads against the bevel plane
 // B = normalize(planeA + planeB) (figure 5): (A, bevel) with q1 = normalize(nA +
 // nB') and (bevel, B) with q2 = normalize(nB' + nB), nB' the bevel normal. For
-// any light in front of A and behind B, exactly one of the two opens.
+// any light in front of A and behind B, exactly one of the two opens. Width:
+// a quad opens for lights in the two opposite wedges where its planes disagree,
+// and its projected width is then at least cos(phi / 2) of the nominal 1.5 len,
+// phi <= 90 degrees the angle between its two normals: >= 70.7% (section 4.1).
 //
 // Candidate edges ("only edges that can bound a shadow"):
 //   manifold, consistent, convex       one quad, or two with the bevel
@@ -26,14 +29,20 @@
 //                                      inside the occluder (section 3.1); kept
 //                                      with EsmOptions::keep_concave
 //   both faces share a stored plane    none (geom/face_planes.h)
-//   boundary edge (open surface)       one quad per face, side B = the same plane
-//                                      flipped: opens for every light off the
-//                                      plane (a sheet casts shadow on both sides);
-//                                      q lies in the face's plane, pointing out
+//   boundary edge (open surface)       a knife edge between the face's plane and
+//                                      the same plane flipped (bit 31): split
+//                                      against the bevel plane through the edge
+//                                      whose normal u lies in the face's plane,
+//                                      pointing away from it, so two quads:
+//                                      (face, bevel) with q = normalize(n + u)
+//                                      and (bevel, flipped face) with q =
+//                                      normalize(u - n). Exactly one opens for
+//                                      any light off the planes: a sheet's
+//                                      border always bounds its shadow
 //   inconsistent (same direction)      one quad, side B's plane flipped (the
 //                                      neighbour's winding corrected), treated
 //                                      as convex/concave like a manifold edge
-//   non-manifold (3+ faces)            one boundary-style quad per face
+//   non-manifold (3+ faces)            the two boundary-style quads per face
 //   degenerate faces                   ignored (no plane)
 //
 // GPU layout. Draw: glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, quad_count),
@@ -81,15 +90,15 @@ struct EsmStats {
   uint64_t emitted_edges = 0;      // edges that got at least one quad
   uint64_t skipped_coplanar = 0;   // shared stored plane: can never open
   uint64_t skipped_concave = 0;    // inside the occluder
-  uint64_t quads = 0;              // records (an edge may have 2: bevel, or k: non-manifold)
-  uint64_t bevel_edges = 0;        // edges split against the bevel plane
+  uint64_t quads = 0;              // records (2 for a bevel edge, 2 per face of a boundary / non-manifold edge)
+  uint64_t bevel_edges = 0;        // edge-face pairs split against a bevel plane
   uint64_t bytes = 0;              // quads * 36 + planes * 16
   uint64_t naive_bytes = 0;        // 160 bytes per quad of every candidate edge, nothing skipped
 };
 
 struct EsmQuads {
   double origin[3] = {0, 0, 0};  // local frame (geom/face_planes.h)
-  std::vector<float> planes;     // vec4 per plane: the referenced face planes, then bevel planes
+  std::vector<float> planes;     // vec4 per plane: referenced face planes and bevel planes, by first use
   std::vector<EsmQuad> quads;
   EsmStats stats;
 };

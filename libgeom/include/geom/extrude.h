@@ -44,15 +44,18 @@ std::vector<float> extrude_volume(const ShadowVolume& volume, const float light[
 bool esm_corners(const EsmQuad& quad, const float* planes, const float light[4], const float light_view_proj[16],
                  float extrude_scale, float out[4][4]);
 
-// The finite shadow volume of `geombake volume`: extrude_volume with each corner
-// at infinity replaced by the point on the ray from its base vertex, in the
-// extrusion direction, `distance` past the axis-aligned box `lo`..`hi`
-// (input coordinates; the scene's bounds). Faces oriented outward, a face
-// repeated where its multiplicity is 2 or more. Output in input coordinates,
-// shared corners welded by exact position. Inside the box it equals the
-// infinite volume, except where a face spans nearly 180 degrees seen from the
-// light (then its flat far cap may cut back into the box: use the infinite
-// volume, as the GPU does).
+// The finite shadow volume of `geombake volume`: extrude_volume with each
+// corner at infinity replaced by a finite point on the same ray, so that every
+// far cap and far edge lies `distance` or more outside the axis-aligned box
+// `lo`..`hi` (input coordinates: the scene's bounds). Directional light: every
+// corner moves the same length (box diagonal + distance) away from the light,
+// a far cap is its face translated. Point light: every far corner lies on one
+// sphere around the light, of radius (farthest box corner + distance) / c,
+// where c > 0 is the least distance from the centre to a far cap's triangle of
+// unit directions (small when a face spans nearly 180 degrees seen from the
+// light; clamped at 1e-3). Inside the box the count equals the infinite
+// volume's. Faces oriented outward, a face repeated where its multiplicity is
+// 2 or more; output in input coordinates, corners welded by exact position.
 struct VolumeMesh {
   std::vector<double> positions;  // xyz per vertex
   std::vector<uint32_t> indices;  // 3 per triangle

@@ -16,15 +16,19 @@
 // weight, and the volume is the sum of these oriented closed surfaces:
 //   count(P) = sum over faces f of w(f) [P in F(f)],  w(f) in {0, 1}.
 // Since all weights are >= 0, count(P) > 0 only if some face blocks P from L.
-//   * Double-sided faces (every face of a component that is not closed):
-//     w(f) = 1 for any light. F(f) is oriented by f's facing: f as is when L is
-//     in front of its plane, f flipped when behind. count(P) = the number of
-//     such faces crossed by the segment PL: non-zero exactly when blocked.
-//   * One-sided faces (a closed component: every edge has exactly two
-//     non-degenerate faces traversing it in opposite directions): w(f) = 1 when
-//     L is in front, 0 when behind. A segment from L that meets a closed surface
-//     first enters it through a face whose front sees L, so count(P) > 0 exactly
-//     when the component blocks P. This is the classic volume, half the fill.
+//   * Double-sided faces (the default, every face): w(f) = 1 for any light.
+//     F(f) is oriented by f's facing: f as is when L is in front of its plane,
+//     f flipped when behind. count(P) = the number of faces crossed by the
+//     segment PL: non-zero exactly when blocked, for any mesh and any light.
+//   * One-sided faces (ShadowVolumeOptions::one_sided_closed, only for faces of
+//     a closed component: every edge has exactly two non-degenerate faces
+//     traversing it in opposite directions): w(f) = 1 when L is in front, 0
+//     when behind. A segment from a light OUTSIDE the solid first enters it
+//     through a face whose front sees L, so count(P) > 0 exactly when the
+//     component blocks P: the classic volume, half the fill and memory. The
+//     caller promises the light never enters such a solid; a light inside one
+//     sees everything outside it lit (the classic failure), which is why this
+//     is not the default.
 // The side quads of neighbouring frusta along a shared edge coincide; they are
 // merged per edge. An edge's net multiplicity is the sum over its faces of
 // (+1 or -1: the face's orientation for this light times its direction along
@@ -32,12 +36,12 @@
 //   pair record    two faces A (traversing p0 -> p1) and B (p1 -> p0) of a
 //                  manifold, consistent edge. One-sided: multiplicity 0 or 1,
 //                  the classic silhouette quad. Double-sided: 0 or 2, stored as
-//                  the record repeated twice. Never emitted when A and B share a
+//                  the record repeated twice (adjacent in `sides`). Never emitted when A and B share a
 //                  stored plane (both classified alike, the sum is always 0).
 //   single record  one face traversing p0 -> p1, side B = the same plane
 //                  flipped: always open (multiplicity 1), oriented by the face's
 //                  facing. Used for boundary edges, inconsistent edges and every
-//                  face of a non-manifold edge, all double-sided.
+//                  face of a non-manifold edge (never in a closed component).
 // Because every decision about a face comes from one stored plane and one
 // expression, the sides and the caps of one light always agree: the volume is a
 // closed oriented surface whatever the rounding, and a face classified wrongly
@@ -108,8 +112,8 @@ struct ShadowVolumeStats {
   uint64_t pair_edges = 0;         // manifold consistent edges given a pair record
   uint64_t single_records = 0;     // boundary, inconsistent and non-manifold face records
   uint64_t skipped_coplanar = 0;   // pair edges not emitted: shared stored plane
-  uint64_t one_sided_faces = 0;    // faces of closed components
-  uint64_t double_sided_faces = 0; // faces of open / non-manifold components
+  uint64_t one_sided_faces = 0;    // faces of closed components, with one_sided_closed
+  uint64_t double_sided_faces = 0; // all other non-degenerate faces
   uint64_t degenerate_faces = 0;   // no plane, no cap
   uint64_t sides = 0, caps = 0;    // records
   uint64_t bytes = 0;              // sides * 32 + caps * 40 + planes * 16
@@ -128,9 +132,14 @@ struct ShadowVolume {
   float light[4] = {0, 0, 0, 0};
 };
 
+struct ShadowVolumeOptions {
+  bool one_sided_closed = false;  // classic one-sided closed components (lights outside them only)
+};
+
 // The generic, light-independent volume of a welded mesh.
 ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                                 const Topology& topology, const FacePlanes& planes);
+                                 const Topology& topology, const FacePlanes& planes,
+                                 const ShadowVolumeOptions& options = {});
 
 // The exact volume of one static light (local frame, w = 1 point, w = 0 direction
 // towards the light): only the side records that open for it, each repeated by
