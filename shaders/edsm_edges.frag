@@ -1,6 +1,7 @@
 #version 450 core
 // Edge distance shadow map (001, Kenzel), distance-map pass, per sample:
-//  - the signed distance to the edge's line in texels is written to the R32F map;
+//  - the signed distance to the edge's line in texels (r) and the edge's light
+//    depth at the sample (g) are written to the RG32F map;
 //  - corner priority (eq. 3.8, its spherical form near a corner vertex): the
 //    distance to the edge within its span, the distance to the corner vertex
 //    beyond it, written as fragment depth; the depth test keeps the sample of
@@ -14,7 +15,7 @@ flat in vec2 f_depth;
 uniform float u_map_size;
 uniform float u_half_width;
 uniform sampler2D u_depth;  // the light's depth map, read without comparison
-layout(location = 0) out float o_distance;
+layout(location = 0) out vec2 o_edge;
 
 void main() {
   vec2 p = gl_FragCoord.xy / u_map_size * 2.0 - 1.0;
@@ -30,6 +31,6 @@ void main() {
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(c + ivec2(x, y), ivec2(0), top), 0).r);
   if (z_edge > z_far + 1e-5) discard;
-  o_distance = (dot(f_line.xy, p) + f_line.z) * texels;
+  o_edge = vec2((dot(f_line.xy, p) + f_line.z) * texels, z_edge);
   gl_FragDepth = priority / (2.0 * u_half_width + 1.0);
 }

@@ -588,7 +588,7 @@ GLuint depth_sampler(State& s) {
 
 // Edge distance shadow map, distance pass (001, Sect. 4.2.1).
 bool edsm_pass(State& s, const glm::mat4& light_clip, int n, PassTimer& timer, std::string& error) {
-  ensure_edge_map(s, n, GL_R32F);
+  ensure_edge_map(s, n, GL_RG32F);
   GLuint p = program(s, {"edsm_edges.vert", "edsm_edges.geom", "edsm_edges.frag"}, error);
   if (!p) return false;
   set(p, "u_matrix", light_clip);
@@ -598,8 +598,8 @@ bool edsm_pass(State& s, const glm::mat4& light_clip, int n, PassTimer& timer, s
   timer.begin("edge distance map");
   glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
   glViewport(0, 0, n, n);
-  const float none = 3.0e38f;
-  glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, &none);
+  const float none[4] = {3.0e38f, 0, 0, 0};
+  glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, none);
   glClear(GL_DEPTH_BUFFER_BIT);
   glBindTextureUnit(1, s.shadow_map.depth);
   glBindSampler(1, depth_sampler(s));
