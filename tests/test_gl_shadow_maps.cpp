@@ -1,4 +1,5 @@
-// Shadow-map techniques (ssm, pcf, cube) against the ray-cast reference
+// Shadow-map techniques (ssm, pcf, cube, and the focused maps psm, lispsm,
+// uniform of geom/focus.h) against the ray-cast reference
 // (geom/shadow_reference.h), headless on EGL (llvmpipe without a GPU).
 //
 // Law: away from true boundaries (the reference's uncertain set), a shadow map
@@ -52,6 +53,7 @@ struct Case {
 std::vector<Case> light_cases() {
   std::vector<Case> cases;
   cases.push_back({"point", point_light({-1.5f, 3.5f, -3.5f})});
+  cases.push_back({"point outside the scene box", point_light({-5.0f, 9.0f, -8.0f})});
   viewer::LightSetup spot = point_light({-3, 7, 2});
   spot.spot = true;
   spot.spot_direction = glm::vec3(3, -7, -2);
@@ -70,7 +72,8 @@ TEST(GlShadowMaps, MasksAgreeWithTheReferenceAwayFromBoundaries) {
   auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
   for (const Case& c : light_cases())
-    for (Technique t : {Technique::Ssm, Technique::Pcf, Technique::Cube}) {
+    for (Technique t : {Technique::Ssm, Technique::Pcf, Technique::Cube, Technique::Psm, Technique::Lispsm,
+                        Technique::Uniform}) {
       if (t == Technique::Cube && c.light.position.w == 0) continue;
       const Comparison cmp = render_and_compare(*state, scene, default_view(), c.light, t, 1024);
       SCOPED_TRACE(std::string(c.name) + " " + viewer::technique_name(t));

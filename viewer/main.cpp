@@ -147,10 +147,7 @@ int main(int argc, char** argv) {
 
   // Camera: the flags, or a view of the whole scene's bounding sphere.
   const glm::vec4 b = viewer::scene_bounds(*state);
-  view.target = glm::vec3(b);
-  view.eye = view.target + glm::normalize(glm::vec3(0.55f, 0.45f, 1.0f)) * (b.w * 2.6f);
-  view.near_plane = b.w * 0.01f;
-  view.far_plane = b.w * 100.0f;
+  view = viewer::default_view(*state, view.width, view.height);
   struct VecFlag {
     const char* name;
     glm::vec3* value;
@@ -263,6 +260,10 @@ int main(int argc, char** argv) {
   if (frames > 1) std::printf("# pass times: %s\n", viewer::timing_kind(*state).c_str());
   for (viewer::Technique t : techniques) {
     settings.technique = t;
+    if (t == viewer::Technique::Cube && light.position.w == 0 && several) {
+      std::fprintf(stderr, "Warning: cube skipped: it needs a point or spot light\n");
+      continue;
+    }
     geom::PngImage image;
     for (int f = 0; f < frames; ++f) {
       std::vector<viewer::PassTime> times;

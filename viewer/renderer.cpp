@@ -5,6 +5,8 @@
 //   edge distance shadow map (001) ............. shaders/edsm_edges.*, lookup_edsm.frag
 //   extended shadow map (000) .................. shaders/esm_quad.vert, esm_edges.frag, lookup_esm.frag
 //   stencil shadow volumes (004, 001 Sect. 5) .. shaders/shadow_volume.vert, volume.frag
+//   perspective (002), light-space perspective and uniform focused shadow maps:
+//   the light matrix of geom/focus.h (per frame), then the simple map's passes
 // The silhouette buffers come from geom/silhouette.h, baked once per caster
 // (the triangles of one glTF mesh instance, or of the whole file when it has
 // no such notion), so that shadow volumes choose depth-pass or depth-fail per
@@ -25,6 +27,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "geom/focus.h"
 #include "geom/silhouette.h"
 
 namespace viewer {
@@ -43,10 +46,12 @@ bool technique_available(Technique t) {
     case Technique::Sv:
     case Technique::SvZPass:
     case Technique::SvZFail:
+    case Technique::Psm:
+    case Technique::Lispsm:
+    case Technique::Uniform:
       return true;
-    default:
-      return false;
   }
+  return false;
 }
 
 // A GL name that deletes itself (one deleter per object kind).
@@ -160,6 +165,7 @@ struct State {
   VertexArray scene_vao;
   GLsizei scene_vertices = 0;
   glm::vec4 bounds{0, 0, 0, 1};
+  glm::vec3 scene_lo{-1}, scene_hi{1};  // bounding box
   // Render targets, re-created when their size changes.
   Target camera, shadow_map, cube, edge_map;
   GLuint depth_sampler = 0;  // reads a depth texture without comparison
@@ -536,8 +542,11 @@ bool camera_may_be_in_volume(const Caster& c, const glm::vec3& eye, float radius
   return true;
 }
 
-// A depth map from the light with slope-scaled bias: shared by ssm, pcf, esm, edsm.
-bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, PassTimer& timer, std::string& error) {
+// A depth map from the light with slope-scaled bias: shared by ssm, pcf, esm,
+// edsm and the focused maps. `slope` is glPolygonOffset's factor: the depth
+// slope of one texel covers a lookup at the texel's own centre; a filter whose
+// taps reach k texels away needs about k + 1 of them.
+bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, float slope, PassTimer& timer, std::string& error) {
   ensure_shadow_map(s, n);
   GLuint p = program(s, {"depth.vert", "depth.frag"}, error);
   if (!p) return false;
@@ -547,7 +556,7 @@ bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, PassTimer& tim
   glViewport(0, 0, n, n);
   glClear(GL_DEPTH_BUFFER_BIT);
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(1.5f, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
+  glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
   glUseProgram(p);
   draw_scene(s);
   glDisable(GL_POLYGON_OFFSET_FILL);
@@ -713,10 +722,43 @@ bool volume_pass(State& s, const View& view, const glm::mat4& view_proj, const L
   return true;
 }
 
+// The focused light matrix of psm / lispsm / uniform (geom/focus.h), and H.
+geom::FocusResult focus(const State& s, const View& view, float aspect, const LightSetup& light,
+                        geom::FocusMethod method) {
+  const double eye[3] = {view.eye.x, view.eye.y, view.eye.z}, target[3] = {view.target.x, view.target.y, view.target.z},
+               up[3] = {view.up.x, view.up.y, view.up.z};
+  const geom::FocusCamera camera =
+      geom::focus_camera_look_at(eye, target, up, view.fovy_deg, aspect, view.near_plane, view.far_plane);
+  geom::FocusLight l;
+  const glm::vec3 L(light.position);
+  if (light.position.w == 0) {
+    l.type = geom::FocusLightType::Directional;
+    for (int k = 0; k < 3; ++k) l.direction[k] = -L[k];
+  } else {
+    l.type = light.spot ? geom::FocusLightType::Spot : geom::FocusLightType::Point;
+    for (int k = 0; k < 3; ++k) l.position[k] = L[k], l.direction[k] = light.spot_direction[k];
+    l.spot_angle = glm::radians(double(light.spot_angle_deg));
+  }
+  geom::FocusBox box;
+  for (int k = 0; k < 3; ++k) box.min[k] = s.scene_lo[k], box.max[k] = s.scene_hi[k];
+  geom::FocusOptions options;
+  options.method = method;
+  geom::FocusResult result;
+  geom::compute_focus(camera, l, box, options, result);
+  return result;
+}
+
+glm::mat4 to_mat4(const double m[16]) {
+  glm::mat4 out;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out[c][r] = float(m[c * 4 + r]);
+  return out;
+}
+
 // Inspection overlay: topology problems of the mesh and the silhouette quads of
 // the current light, drawn over the shaded frame.
-bool inspection_pass(State& s, const glm::mat4& view_proj, const LightSetup& light, int w, int h, PassTimer& timer,
-                     std::string& error) {
+bool inspection_pass(State& s, const View& view, const glm::mat4& view_proj, const LightSetup& light,
+                     geom::FocusMethod method, int w, int h, PassTimer& timer, std::string& error) {
   GLuint lines = program(s, {"inspect.vert", "inspect.frag"}, error);
   GLuint quads = lines ? program(s, {"esm_quad.vert", "inspect.frag"}, error) : 0;
   if (!quads) return false;
@@ -748,6 +790,32 @@ bool inspection_pass(State& s, const glm::mat4& view_proj, const LightSetup& lig
     glBindVertexArray(c.esm_vao);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
   }
+  // The focus body H of the focused shadow map (geom/focus.h), as a wireframe
+  // drawn over everything.
+  const geom::FocusResult f = focus(s, view, float(w) / float(h), light, method);
+  std::vector<float> edges;
+  size_t at = 0;
+  for (uint32_t n : f.face_sizes) {
+    for (uint32_t k = 0; k < n && at + n <= f.face_indices.size(); ++k)
+      for (uint32_t v : {f.face_indices[at + k], f.face_indices[at + (k + 1) % n]})
+        if (size_t(v) * 3 + 2 < f.vertices.size())
+          edges.insert(edges.end(), {float(f.vertices[3 * size_t(v)]), float(f.vertices[3 * size_t(v) + 1]),
+                                     float(f.vertices[3 * size_t(v) + 2])});
+    at += n;
+  }
+  Buffer buffer;
+  VertexArray vao;
+  upload(buffer, edges.data(), edges.size() * sizeof(float), "focus body H edges");
+  glCreateVertexArrays(1, &vao.id);
+  glVertexArrayVertexBuffer(vao, 0, buffer, 0, 3 * sizeof(float));
+  attribute(vao, 0, 3, GL_FLOAT, 0, false);
+  label(GL_VERTEX_ARRAY, vao, "focus body H");
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(lines);
+  set(lines, "u_colour", glm::vec4(0.3f, 1.0f, 0.3f, 1));
+  glBindVertexArray(vao);
+  glDrawArrays(GL_LINES, 0, GLsizei(edges.size() / 3));
+  glEnable(GL_DEPTH_TEST);
   glDisable(GL_POLYGON_OFFSET_LINE);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
@@ -793,15 +861,34 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   std::string lookup = "lookup_none.frag";
   GLuint shadow_texture = 0, second_texture = 0;
   LightFrame frame;
-  const Technique t = fs.technique;
+  Technique t = fs.technique;
+  // Focused maps: the light matrix of geom/focus.h; a point light among the
+  // receivers cannot be covered by one map, and an engine renders a cube map
+  // for it instead (FocusResult::needs_cube_map).
+  const bool focused = t == Technique::Psm || t == Technique::Lispsm || t == Technique::Uniform;
+  geom::FocusResult focus_result;
+  if (focused) {
+    timer.begin("focus (CPU)");
+    focus_result = focus(s, view, aspect, light,
+                         t == Technique::Psm      ? geom::FocusMethod::Psm
+                         : t == Technique::Lispsm ? geom::FocusMethod::Lispsm
+                                                  : geom::FocusMethod::Uniform);
+    timer.end();
+    if (focus_result.needs_cube_map) t = Technique::Cube;
+  }
   const bool volumes = t == Technique::Sv || t == Technique::SvZPass || t == Technique::SvZFail;
   switch (t) {
     case Technique::Ssm:
     case Technique::Pcf:
     case Technique::Esm:
-    case Technique::Edsm: {
+    case Technique::Edsm:
+    case Technique::Psm:
+    case Technique::Lispsm:
+    case Technique::Uniform: {
       frame = light_frame(s, light);
-      if (!depth_map_pass(s, frame.clip(), n, timer, error)) return false;
+      if (focused) frame.proj = to_mat4(focus_result.matrix), frame.view = glm::mat4(1);
+      const float slope = t == Technique::Pcf ? 3.5f : focused ? 3.0f : 1.5f;  // pcf: taps 1 texel away, bilinear: 2
+      if (!depth_map_pass(s, frame.clip(), n, slope, timer, error)) return false;
       if (t == Technique::Edsm && !edsm_pass(s, frame.clip(), n, timer, error)) return false;
       if (t == Technique::Esm && !esm_pass(s, frame, light, n, timer, error)) return false;
       const GLint filter = t == Technique::Ssm ? GL_NEAREST : GL_LINEAR;
@@ -821,15 +908,15 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
       const glm::vec3 L(light.position);
       const float d = glm::length(glm::vec3(s.bounds) - L), r = s.bounds.w;
       const float near_plane = std::max(r * 1e-3f, (d - r) * 0.5f), far_plane = (d + r) * 1.01f;
-      const glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, near_plane, far_plane);
-      // GL cube face order +X -X +Y -Y +Z -Z, with the face orientations of the GL spec.
-      const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-      const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+      // The six faces, GL order +X -X +Y -Y +Z -Z (geom/focus.h, seed 003).
+      const double position[3] = {L.x, L.y, L.z};
+      double faces[6][16];
+      geom::focus_cube_faces(position, near_plane, far_plane, faces);
       GLuint p = program(s, {"cube_distance.vert", "cube_distance.geom", "cube_distance.frag"}, error);
       if (!p) return false;
       for (int f = 0; f < 6; ++f) {
         const std::string name = "u_face[" + std::to_string(f) + "]";
-        set(p, name.c_str(), proj * glm::lookAt(L, L + dirs[f], ups[f]));
+        set(p, name.c_str(), to_mat4(faces[f]));
       }
       set(p, "u_light_position", L);
       timer.begin("cube map");
@@ -911,7 +998,10 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   }
   glBindTextureUnit(0, 0);
   glBindTextureUnit(1, 0);
-  if (fs.inspect && !inspection_pass(s, view_proj, light, w, h, timer, error)) return false;
+  const geom::FocusMethod method = t == Technique::Lispsm    ? geom::FocusMethod::Lispsm
+                                   : t == Technique::Uniform ? geom::FocusMethod::Uniform
+                                                             : geom::FocusMethod::Psm;
+  if (fs.inspect && !inspection_pass(s, view, view_proj, light, method, w, h, timer, error)) return false;
   return true;
 }
 
@@ -960,7 +1050,10 @@ StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, s
       lo = glm::min(lo, p[k]), hi = glm::max(hi, p[k]);
     }
   }
-  if (tris) s->bounds = glm::vec4((lo + hi) * 0.5f, std::max(glm::length(hi - lo) * 0.5f, 1e-3f));
+  if (tris) {
+    s->bounds = glm::vec4((lo + hi) * 0.5f, std::max(glm::length(hi - lo) * 0.5f, 1e-3f));
+    s->scene_lo = lo, s->scene_hi = hi;
+  }
   s->scene_vertices = GLsizei(tris * 3);
   glCreateBuffers(1, &s->scene_vbo.id);
   glNamedBufferStorage(s->scene_vbo, GLsizeiptr(std::max<size_t>(vertices.size(), 1) * sizeof(float)),
@@ -1025,5 +1118,16 @@ std::string timing_kind(State& s) {
   return s.gpu_timers ? "GPU timer queries" : "wall time around glFinish (software renderer)";
 }
 glm::vec4 scene_bounds(const State& s) { return s.bounds; }
+
+View default_view(const State& s, int width, int height) {
+  View v;
+  v.width = width, v.height = height;
+  v.target = glm::vec3(s.bounds) - glm::vec3(0, s.bounds.w * 0.2f, 0);
+  v.eye = v.target + glm::normalize(glm::vec3(0.45f, 0.5f, 1.0f)) * (s.bounds.w * 0.9f);
+  v.fovy_deg = 50;
+  v.near_plane = s.bounds.w * 0.01f;
+  v.far_plane = s.bounds.w * 100.0f;
+  return v;
+}
 
 }  // namespace viewer

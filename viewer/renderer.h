@@ -82,4 +82,7 @@ std::string timing_kind(State& state);    // "GPU timer queries" or "wall time a
 // Bounding sphere of the scene (centre xyz, radius), for default cameras and light frusta.
 glm::vec4 scene_bounds(const State& state);
 
+// The default camera: the scene's bounding sphere seen from above, front and right.
+View default_view(const State& state, int width, int height);
+
 }  // namespace viewer
