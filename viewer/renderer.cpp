@@ -851,8 +851,8 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  if (needs_casters(fs)) {
-    timer.begin("silhouette buffers (first use)");
+  if (needs_casters(fs) && !s.casters_built) {
+    timer.begin("silhouette buffers (bake, once)");
     const bool ok = build_casters(s, error);
     timer.end();
     if (!ok) return false;
@@ -874,7 +874,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
                          : t == Technique::Lispsm ? geom::FocusMethod::Lispsm
                                                   : geom::FocusMethod::Uniform);
     timer.end();
-    if (focus_result.needs_cube_map) t = Technique::Cube;
+    if (focus_result.needs_cube_map) t = Technique::Cube;  // the pass is then named "cube map (...)"
   }
   const bool volumes = t == Technique::Sv || t == Technique::SvZPass || t == Technique::SvZFail;
   switch (t) {
@@ -919,7 +919,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
         set(p, name.c_str(), to_mat4(faces[f]));
       }
       set(p, "u_light_position", L);
-      timer.begin("cube map");
+      timer.begin(focused ? "cube map (focus: point light among the receivers)" : "cube map");
       glBindFramebuffer(GL_FRAMEBUFFER, s.cube.fbo);
       glViewport(0, 0, n, n);
       const float far_value = 3.0e38f;
