@@ -786,7 +786,7 @@ TEST(ImportGltf, DracoMatchesPlain) {
   expect_same_mesh(kDraco + "/Duck/glTF/Duck.gltf", kDraco + "/Duck/glTF_Binary/Duck.glb");
   auto d = geom::import_file(kDraco + "/Box/glTF_Binary/Box_Draco.glb");
   ASSERT_TRUE(d.ok);
-  EXPECT_EQ(source_count(d.scene, "gltf draco primitive instances"), 1u);
+  EXPECT_EQ(source_count(d.scene, "primitives.draco"), 1u);
 }
 
 // The Draco engine is not the plain engine's exact mesh: its encoder dropped
@@ -807,8 +807,8 @@ TEST(ImportGltf, DracoEngineMatchesPlain) {
   std::set<uint32_t> meshes;
   for (const auto& s : d.scene.sources) meshes.insert(s.mesh);
   EXPECT_EQ(meshes.size(), 29u);
-  EXPECT_EQ(source_count(d.scene, "gltf draco primitive instances"), source_count(d.scene, "gltf primitive instances"));
-  EXPECT_EQ(source_count(p.scene, "gltf draco primitive instances"), 0u);
+  EXPECT_EQ(source_count(d.scene, "primitives.draco"), source_count(d.scene, "primitives.instanced"));
+  EXPECT_EQ(source_count(p.scene, "primitives.draco"), 0u);
   expect_same_extents(d.scene, p.scene);
 }
 

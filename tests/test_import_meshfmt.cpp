@@ -561,11 +561,14 @@ TEST(ImportStl, BadFilesAreRefused) {
     EXPECT_EQ(r.error.rfind(path + ": ", 0), 0u) << r.error;
     EXPECT_NE(r.error.find(c.expect), std::string::npos) << r.error;
   }
-  // Trailing bytes after complete records only warn.
-  ImportResult r = load_text("trail.stl", binary_stl("x", {tri}) + "junk");
-  ASSERT_TRUE(r.ok) << r.error;
-  EXPECT_EQ(r.scene.triangle_count(), 1u);
-  EXPECT_EQ(r.scene.warnings.size(), 1u);
+  // Trailing bytes after complete records only warn, also when the header begins with "solid".
+  for (const char* header : {"x", "solid x"}) {
+    ImportResult r = load_text("trail.stl", binary_stl(header, {tri}) + "junk");
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(r.scene.triangle_count(), 1u);
+    ASSERT_EQ(r.scene.warnings.size(), 1u);
+    EXPECT_NE(r.scene.warnings[0].find("4 bytes after the last binary STL triangle"), std::string::npos);
+  }
 }
 
 // ---------------------------------------------------------------------------

@@ -1086,9 +1086,9 @@ void import(const ImportInput& in, Scene& out) {
       out.sources.insert(out.sources.end(), d.indices.size() / 3, src);
     }
   }
-  out.source_counts.push_back({"gltf primitive instances", instances});
-  out.source_counts.push_back({"gltf draco primitive instances", draco_used});
-  out.source_counts.push_back({"gltf skipped primitives", skipped});
+  out.source_counts.push_back({"primitives.instanced", instances});
+  out.source_counts.push_back({"primitives.draco", draco_used});
+  out.source_counts.push_back({"primitives.skipped", skipped});
 }
 
 }  // namespace

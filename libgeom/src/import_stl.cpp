@@ -7,9 +7,11 @@
 // solids in one file allowed.
 //
 // Which one: a file whose size is exactly 84 + 50 n is binary, even when its
-// header begins with "solid" (many exporters write that); otherwise a file
-// beginning with "solid" is ASCII; anything else is binary, refused when it is
-// shorter than its count says (trailing bytes after the records only warn).
+// header begins with "solid" (many exporters write that). Otherwise a file
+// that begins with "solid" and holds no NUL byte is ASCII (or, if it does not
+// parse as ASCII and its count fits, binary with trailing bytes); anything
+// else is binary, refused when shorter than its count says (trailing bytes
+// only warn).
 //
 // STL shares no vertices: each triangle gets 3 fresh vertices (corner order
 // kept, the stored normal ignored); geom::weld recovers the topology. A facet
@@ -167,12 +169,20 @@ bool import_stl(const ImportInput& in, Scene& out, std::string& error) {
     n = uint64_t(in.data[80]) | uint64_t(in.data[81]) << 8 | uint64_t(in.data[82]) << 16 |
         uint64_t(in.data[83]) << 24;
   if (in.size >= 84 && 84 + 50 * n == in.size) return import_binary(in, n, out, error);
-  if (begins_with_solid(in)) {
+  // ASCII STL is text: a NUL byte anywhere means binary.
+  if (begins_with_solid(in) && !std::memchr(in.data, 0, in.size)) {
     if (looks_like_utf16(in.data, in.size)) {
       error = "UTF-16 or UTF-32 text is not supported (save the STL as ASCII)";
       return false;
     }
-    return import_ascii(in, out, error);
+    const size_t np = out.positions.size(), ni = out.indices.size(), ns = out.sources.size(), nw = out.warnings.size();
+    if (import_ascii(in, out, error)) return true;
+    // Not ASCII after all: a binary file whose header begins with "solid" and
+    // that carries bytes after its records.
+    if (in.size < 84 || 84 + 50 * n > in.size) return false;
+    out.positions.resize(np), out.indices.resize(ni), out.sources.resize(ns), out.warnings.resize(nw);
+    error.clear();
+    return import_binary(in, n, out, error);
   }
   if (in.size < 84) {
     error = in.size == 0 ? "empty file" : "too short for a binary STL (" + std::to_string(in.size) +

@@ -71,7 +71,11 @@ int run_info(const std::vector<std::string>& argv) {
     geom::analyze(imported.scene, tolerance, topo, verbose, report);
     if (!json)
       for (const std::string& w : report.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
-    out += json ? geom::report_json(report) + "\n" : geom::report_text(report);
+    std::string text = json ? geom::report_json(report) + "\n" : geom::report_text(report);
+    if (args.has("-o"))
+      out += text;
+    else
+      std::fputs(text.c_str(), stdout), std::fflush(stdout);
   }
   if (args.has("-o")) {
     std::string error;
@@ -79,8 +83,6 @@ int run_info(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "Error: %s\n", error.c_str());
       return 1;
     }
-  } else {
-    std::fputs(out.c_str(), stdout);
   }
   return failed ? 1 : 0;
 }
