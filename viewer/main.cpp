@@ -7,11 +7,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "geom/baked_reader.h"
 #include "geom/import.h"
 #include "geombake/args.h"
 #include "platform.h"
@@ -20,7 +22,8 @@
 namespace {
 
 const char* kUsage =
-    "Usage: geomview [FILE] [options]   (FILE: a mesh or scene; the bundled default scene when absent)\n"
+    "Usage: geomview [FILE] [options]   (FILE: a baked .gbk container, or a mesh or scene file baked in\n"
+    "                                    process; the bundled default scene when absent)\n"
     "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform, or all\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"
     "  --light X,Y,Z,W            W=1 point light at X,Y,Z; W=0 directional light at infinity towards X,Y,Z\n"
@@ -128,10 +131,33 @@ int main(int argc, char** argv) {
     view.width = w, view.height = h;
   }
 
-  // The scene.
-  geom::ImportResult imported = geom::import_file(file);
-  if (!imported.ok) return fail(imported.error);
-  for (const std::string& w : imported.scene.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+  // The input: a baked container (by its magic bytes), or a mesh / scene file
+  // imported and baked in process on first use.
+  std::vector<unsigned char> baked_bytes;
+  {
+    std::FILE* f = std::fopen(file.c_str(), "rb");
+    unsigned char magic[8] = {};
+    if (f && std::fread(magic, 1, 8, f) == 8 && std::memcmp(magic, geom::baked::kMagic, 8) == 0) {
+      std::fseek(f, 0, SEEK_END);
+      const long size = std::ftell(f);
+      std::fseek(f, 0, SEEK_SET);
+      if (size > 0) {
+        baked_bytes.resize(size_t(size));
+        if (std::fread(baked_bytes.data(), 1, baked_bytes.size(), f) != baked_bytes.size()) baked_bytes.clear();
+      }
+      if (baked_bytes.empty()) {
+        std::fclose(f);
+        return fail(file + ": cannot read the baked file");
+      }
+    }
+    if (f) std::fclose(f);
+  }
+  geom::ImportResult imported;
+  if (baked_bytes.empty()) {
+    imported = geom::import_file(file);
+    if (!imported.ok) return fail(imported.error);
+    for (const std::string& w : imported.scene.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+  }
 
   const std::string out_path = args.get("-o");
   const bool window = args.has("--window") || (out_path.empty() && std::getenv("DISPLAY"));
@@ -141,8 +167,10 @@ int main(int argc, char** argv) {
   if (!platform) return fail(error);
   if (!note.empty()) std::fprintf(stderr, "Warning: %s\n", note.c_str());
   const char* shader_dir = std::getenv("GEOMVIEW_SHADERS");
-  viewer::StatePtr state = viewer::create_state(
-      imported.scene, args.get("--shaders", shader_dir ? shader_dir : GEOMVIEW_SHADER_DIR), error);
+  const std::string shaders = args.get("--shaders", shader_dir ? shader_dir : GEOMVIEW_SHADER_DIR);
+  viewer::StatePtr state =
+      baked_bytes.empty() ? viewer::create_state(imported.scene, shaders, error)
+                          : viewer::create_state_baked(baked_bytes.data(), baked_bytes.size(), shaders, imported.scene, error);
   if (!state) return fail(file + ": " + error);
 
   // Camera: the flags, or a view of the whole scene's bounding sphere.

@@ -28,7 +28,9 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "geom/focus.h"
+#include "geom/baked_reader.h"
 #include "geom/silhouette.h"
+#include "geom/topology.h"
 
 namespace viewer {
 namespace {
@@ -174,6 +176,8 @@ struct State {
   geom::Scene scene;  // positions, indices, sources: the casters are baked from it
   bool casters_built = false;
   std::vector<Caster> casters;
+  // A baked file's casters come with it; the buffers it lacks are named here.
+  bool baked = false, baked_esm = true, baked_volume = true, baked_adjacency = true;
   ~State() {
     if (depth_sampler) glDeleteSamplers(1, &depth_sampler);
   }
@@ -397,8 +401,8 @@ void upload(Buffer& buffer, const void* data, size_t bytes, const char* name) {
   label(GL_BUFFER, buffer, name);
 }
 
-void plane_texture(Texture& texture, Buffer& buffer, const std::vector<float>& planes, const char* name) {
-  upload(buffer, planes.data(), planes.size() * sizeof(float), name);
+void plane_texture(Texture& texture, Buffer& buffer, const float* planes, size_t plane_count, const char* name) {
+  upload(buffer, planes, plane_count * 4 * sizeof(float), name);
   glCreateTextures(GL_TEXTURE_BUFFER, 1, &texture.id);
   glTextureBuffer(texture, GL_RGBA32F, buffer);
   label(GL_TEXTURE, texture, name);
@@ -411,7 +415,138 @@ void attribute(GLuint vao, GLuint location, GLint size, GLenum type, GLuint offs
   glVertexArrayAttribBinding(vao, location, 0);
 }
 
-// Bakes and uploads the silhouette buffers of every caster (once).
+// The silhouette buffers of one caster, as baked in process (geom/silhouette.h)
+// or read from a baked container (geom/baked_reader.h): borrowed arrays.
+struct CasterSource {
+  glm::dvec3 origin{0};
+  const float* welded = nullptr;  // xyz per welded vertex (input coordinates)
+  size_t welded_count = 0;
+  const uint32_t* adjacency = nullptr;  // 6 per triangle, into welded
+  size_t adjacency_count = 0;
+  const geom::EsmQuad* esm = nullptr;
+  size_t esm_count = 0;
+  const float* esm_planes = nullptr;
+  size_t esm_plane_count = 0;
+  const geom::SvSide* sides = nullptr;
+  size_t side_count = 0;
+  const geom::SvCap* caps = nullptr;
+  size_t cap_count = 0;
+  const float* volume_planes = nullptr;
+  size_t volume_plane_count = 0;
+  const uint32_t* indices = nullptr;  // 3 per triangle, into welded (for the inspection lines)
+  size_t triangle_count = 0;
+};
+
+template <class Record>
+bool planes_in_range(const Record* records, size_t count, size_t planes, uint32_t Record::*first, uint32_t Record::*second) {
+  for (size_t i = 0; i < count; ++i) {
+    if (((records[i].*first) & 0x7fffffffu) >= planes) return false;
+    if (second && ((records[i].*second) & 0x7fffffffu) >= planes) return false;
+  }
+  return true;
+}
+
+// Uploads one caster; checks every index against its array first (a baked file
+// is untrusted input).
+bool upload_caster(State& s, const CasterSource& src, std::string& error) {
+  for (size_t i = 0; i < src.adjacency_count; ++i)
+    if (src.adjacency[i] >= src.welded_count) {
+      error = "adjacency index " + std::to_string(i) + " out of range";
+      return false;
+    }
+  for (size_t i = 0; i < 3 * src.triangle_count; ++i)
+    if (src.indices[i] >= src.welded_count) {
+      error = "triangle index " + std::to_string(i) + " out of range";
+      return false;
+    }
+  if (!planes_in_range(src.esm, src.esm_count, src.esm_plane_count, &geom::EsmQuad::plane_a, &geom::EsmQuad::plane_b) ||
+      !planes_in_range(src.sides, src.side_count, src.volume_plane_count, &geom::SvSide::plane_a,
+                       &geom::SvSide::plane_b) ||
+      !planes_in_range<geom::SvCap>(src.caps, src.cap_count, src.volume_plane_count, &geom::SvCap::plane, nullptr)) {
+    error = "a silhouette record refers to a plane out of range";
+    return false;
+  }
+  Caster c;
+  c.origin = src.origin;
+  c.lo = glm::vec3(1e30f), c.hi = glm::vec3(-1e30f);
+  for (size_t v = 0; v < src.welded_count; ++v) {
+    const glm::vec3 p(src.welded[3 * v], src.welded[3 * v + 1], src.welded[3 * v + 2]);
+    c.lo = glm::min(c.lo, p), c.hi = glm::max(c.hi, p);
+  }
+  // Edge distance shadow map: welded positions and the adjacency indices.
+  upload(c.welded, src.welded, src.welded_count * 3 * sizeof(float), "caster welded positions");
+  upload(c.adjacency, src.adjacency, src.adjacency_count * sizeof(uint32_t), "caster adjacency indices");
+  c.adjacency_count = GLsizei(src.adjacency_count);
+  glCreateVertexArrays(1, &c.adjacency_vao.id);
+  glVertexArrayVertexBuffer(c.adjacency_vao, 0, c.welded, 0, 3 * sizeof(float));
+  glVertexArrayElementBuffer(c.adjacency_vao, c.adjacency);
+  attribute(c.adjacency_vao, 0, 3, GL_FLOAT, 0, false);
+  label(GL_VERTEX_ARRAY, c.adjacency_vao, "caster adjacency");
+  // Extended shadow map quads (geom/esm_quads.h layout).
+  upload(c.esm_records, src.esm, src.esm_count * sizeof(geom::EsmQuad), "caster ESM quads");
+  plane_texture(c.esm_planes, c.esm_plane_buffer, src.esm_planes, src.esm_plane_count, "caster ESM planes");
+  c.esm_count = GLsizei(src.esm_count);
+  glCreateVertexArrays(1, &c.esm_vao.id);
+  glVertexArrayVertexBuffer(c.esm_vao, 0, c.esm_records, 0, sizeof(geom::EsmQuad));
+  glVertexArrayBindingDivisor(c.esm_vao, 0, 1);
+  attribute(c.esm_vao, 0, 3, GL_FLOAT, 0, false);
+  attribute(c.esm_vao, 1, 3, GL_FLOAT, 12, false);
+  attribute(c.esm_vao, 2, 1, GL_UNSIGNED_INT, 24, true);
+  attribute(c.esm_vao, 3, 1, GL_UNSIGNED_INT, 28, true);
+  attribute(c.esm_vao, 4, 2, GL_SHORT, 32, false, true);
+  label(GL_VERTEX_ARRAY, c.esm_vao, "caster ESM quads");
+  // Shadow volume (geom/shadow_volume.h layout).
+  upload(c.sv_sides, src.sides, src.side_count * sizeof(geom::SvSide), "caster volume sides");
+  upload(c.sv_caps, src.caps, src.cap_count * sizeof(geom::SvCap), "caster volume caps");
+  plane_texture(c.sv_planes, c.sv_plane_buffer, src.volume_planes, src.volume_plane_count, "caster volume planes");
+  c.side_count = GLsizei(src.side_count), c.cap_count = GLsizei(src.cap_count);
+  glCreateVertexArrays(1, &c.sides_vao.id);
+  glVertexArrayVertexBuffer(c.sides_vao, 0, c.sv_sides, 0, sizeof(geom::SvSide));
+  glVertexArrayBindingDivisor(c.sides_vao, 0, 1);
+  attribute(c.sides_vao, 0, 3, GL_FLOAT, 0, false);
+  attribute(c.sides_vao, 1, 3, GL_FLOAT, 12, false);
+  attribute(c.sides_vao, 3, 1, GL_UNSIGNED_INT, 24, true);
+  attribute(c.sides_vao, 4, 1, GL_UNSIGNED_INT, 28, true);
+  label(GL_VERTEX_ARRAY, c.sides_vao, "caster volume sides");
+  glCreateVertexArrays(1, &c.caps_vao.id);
+  glVertexArrayVertexBuffer(c.caps_vao, 0, c.sv_caps, 0, sizeof(geom::SvCap));
+  glVertexArrayBindingDivisor(c.caps_vao, 0, 1);
+  attribute(c.caps_vao, 0, 3, GL_FLOAT, 0, false);
+  attribute(c.caps_vao, 1, 3, GL_FLOAT, 12, false);
+  attribute(c.caps_vao, 2, 3, GL_FLOAT, 24, false);
+  attribute(c.caps_vao, 3, 1, GL_UNSIGNED_INT, 36, true);
+  label(GL_VERTEX_ARRAY, c.caps_vao, "caster volume caps");
+  // Inspection lines: boundary, non-manifold and inconsistent edges; degenerate faces.
+  const geom::Topology topology =
+      geom::build_topology(geom::positions_of(src.welded, src.welded_count), src.indices, src.triangle_count);
+  std::vector<float> lines[4];
+  auto vertex = [&](std::vector<float>& out, uint32_t v) { out.insert(out.end(), src.welded + 3 * size_t(v), src.welded + 3 * size_t(v) + 3); };
+  for (const geom::Edge& e : topology.edges) {
+    const int kind = e.kind == geom::EdgeKind::Boundary      ? 0
+                     : e.kind == geom::EdgeKind::NonManifold ? 1
+                     : e.kind == geom::EdgeKind::Inconsistent ? 2
+                                                              : -1;
+    if (kind >= 0) vertex(lines[kind], e.v0), vertex(lines[kind], e.v1);
+  }
+  for (size_t t = 0; t < topology.face_flags.size() && t < src.triangle_count; ++t)
+    if (topology.face_flags[t] & (geom::kFaceCollapsed | geom::kFaceZeroArea))
+      for (int k = 0; k < 3; ++k) vertex(lines[3], src.indices[3 * t + k]), vertex(lines[3], src.indices[3 * t + (k + 1) % 3]);
+  std::vector<float> all;
+  for (int k = 0; k < 4; ++k) {
+    c.line_first[k] = GLsizei(all.size() / 3);
+    c.line_count[k] = GLsizei(lines[k].size() / 3);
+    all.insert(all.end(), lines[k].begin(), lines[k].end());
+  }
+  upload(c.lines, all.data(), all.size() * sizeof(float), "caster inspection lines");
+  glCreateVertexArrays(1, &c.lines_vao.id);
+  glVertexArrayVertexBuffer(c.lines_vao, 0, c.lines, 0, 3 * sizeof(float));
+  attribute(c.lines_vao, 0, 3, GL_FLOAT, 0, false);
+  label(GL_VERTEX_ARRAY, c.lines_vao, "caster inspection lines");
+  s.casters.push_back(std::move(c));
+  return true;
+}
+
+// Bakes (geom/silhouette.h) and uploads the silhouette buffers of every caster, once.
 bool build_casters(State& s, std::string& error) {
   if (s.casters_built) return true;
   const geom::Scene& scene = s.scene;
@@ -420,95 +555,31 @@ bool build_casters(State& s, std::string& error) {
     std::map<uint32_t, uint32_t> remap;
     std::vector<float> positions;
     std::vector<uint32_t> indices;
-    Caster c;
-    c.lo = glm::vec3(1e30f), c.hi = glm::vec3(-1e30f);
     for (uint32_t t : tris)
       for (int k = 0; k < 3; ++k) {
         const uint32_t v = scene.indices[3 * size_t(t) + k];
         auto it = remap.emplace(v, uint32_t(positions.size() / 3)).first;
-        if (it->second == positions.size() / 3) {
-          const glm::vec3 p(scene.positions[3 * size_t(v)], scene.positions[3 * size_t(v) + 1], scene.positions[3 * size_t(v) + 2]);
-          positions.insert(positions.end(), {p.x, p.y, p.z});
-          c.lo = glm::min(c.lo, p), c.hi = glm::max(c.hi, p);
-        }
+        if (it->second == positions.size() / 3)
+          positions.insert(positions.end(), scene.positions.begin() + 3 * size_t(v), scene.positions.begin() + 3 * size_t(v) + 3);
         indices.push_back(it->second);
       }
-    geom::SilhouetteBuffers b = geom::bake_silhouettes(geom::positions_of(positions.data(), positions.size() / 3),
-                                                       indices.data(), tris.size(), {});
-    c.origin = glm::dvec3(b.planes.origin[0], b.planes.origin[1], b.planes.origin[2]);
-    if (b.adjacency.size() != 6 * tris.size()) {
-      error = "silhouette bake produced no adjacency buffer";
+    const geom::SilhouetteBuffers b = geom::bake_silhouettes(geom::positions_of(positions.data(), positions.size() / 3),
+                                                             indices.data(), tris.size(), {});
+    if (b.adjacency.size() != 6 * tris.size() || b.weld.indices.size() != 3 * tris.size()) {
+      error = "the silhouette bake failed";
       return false;
     }
-    // Edge distance shadow map: welded positions and the adjacency indices.
-    upload(c.welded, b.weld.positions.data(), b.weld.positions.size() * sizeof(float), "caster welded positions");
-    upload(c.adjacency, b.adjacency.data(), b.adjacency.size() * sizeof(uint32_t), "caster adjacency indices");
-    c.adjacency_count = GLsizei(b.adjacency.size());
-    glCreateVertexArrays(1, &c.adjacency_vao.id);
-    glVertexArrayVertexBuffer(c.adjacency_vao, 0, c.welded, 0, 3 * sizeof(float));
-    glVertexArrayElementBuffer(c.adjacency_vao, c.adjacency);
-    attribute(c.adjacency_vao, 0, 3, GL_FLOAT, 0, false);
-    label(GL_VERTEX_ARRAY, c.adjacency_vao, "caster adjacency");
-    // Extended shadow map quads (geom/esm_quads.h layout).
-    upload(c.esm_records, b.esm.quads.data(), b.esm.quads.size() * sizeof(geom::EsmQuad), "caster ESM quads");
-    plane_texture(c.esm_planes, c.esm_plane_buffer, b.esm.planes, "caster ESM planes");
-    c.esm_count = GLsizei(b.esm.quads.size());
-    glCreateVertexArrays(1, &c.esm_vao.id);
-    glVertexArrayVertexBuffer(c.esm_vao, 0, c.esm_records, 0, sizeof(geom::EsmQuad));
-    glVertexArrayBindingDivisor(c.esm_vao, 0, 1);
-    attribute(c.esm_vao, 0, 3, GL_FLOAT, 0, false);
-    attribute(c.esm_vao, 1, 3, GL_FLOAT, 12, false);
-    attribute(c.esm_vao, 2, 1, GL_UNSIGNED_INT, 24, true);
-    attribute(c.esm_vao, 3, 1, GL_UNSIGNED_INT, 28, true);
-    attribute(c.esm_vao, 4, 2, GL_SHORT, 32, false, true);
-    label(GL_VERTEX_ARRAY, c.esm_vao, "caster ESM quads");
-    // Shadow volume (geom/shadow_volume.h layout).
-    upload(c.sv_sides, b.volume.sides.data(), b.volume.sides.size() * sizeof(geom::SvSide), "caster volume sides");
-    upload(c.sv_caps, b.volume.caps.data(), b.volume.caps.size() * sizeof(geom::SvCap), "caster volume caps");
-    plane_texture(c.sv_planes, c.sv_plane_buffer, b.volume.planes, "caster volume planes");
-    c.side_count = GLsizei(b.volume.sides.size()), c.cap_count = GLsizei(b.volume.caps.size());
-    glCreateVertexArrays(1, &c.sides_vao.id);
-    glVertexArrayVertexBuffer(c.sides_vao, 0, c.sv_sides, 0, sizeof(geom::SvSide));
-    glVertexArrayBindingDivisor(c.sides_vao, 0, 1);
-    attribute(c.sides_vao, 0, 3, GL_FLOAT, 0, false);
-    attribute(c.sides_vao, 1, 3, GL_FLOAT, 12, false);
-    attribute(c.sides_vao, 3, 1, GL_UNSIGNED_INT, 24, true);
-    attribute(c.sides_vao, 4, 1, GL_UNSIGNED_INT, 28, true);
-    label(GL_VERTEX_ARRAY, c.sides_vao, "caster volume sides");
-    glCreateVertexArrays(1, &c.caps_vao.id);
-    glVertexArrayVertexBuffer(c.caps_vao, 0, c.sv_caps, 0, sizeof(geom::SvCap));
-    glVertexArrayBindingDivisor(c.caps_vao, 0, 1);
-    attribute(c.caps_vao, 0, 3, GL_FLOAT, 0, false);
-    attribute(c.caps_vao, 1, 3, GL_FLOAT, 12, false);
-    attribute(c.caps_vao, 2, 3, GL_FLOAT, 24, false);
-    attribute(c.caps_vao, 3, 1, GL_UNSIGNED_INT, 36, true);
-    label(GL_VERTEX_ARRAY, c.caps_vao, "caster volume caps");
-    // Inspection lines: boundary, non-manifold and inconsistent edges; degenerate faces.
-    std::vector<float> lines[4];
-    auto vertex = [&](std::vector<float>& out, uint32_t v) {
-      out.insert(out.end(), b.weld.positions.begin() + 3 * size_t(v), b.weld.positions.begin() + 3 * size_t(v) + 3);
-    };
-    for (const geom::Edge& e : b.topology.edges) {
-      const int kind = e.kind == geom::EdgeKind::Boundary ? 0 : e.kind == geom::EdgeKind::NonManifold ? 1
-                       : e.kind == geom::EdgeKind::Inconsistent ? 2 : -1;
-      if (kind >= 0) vertex(lines[kind], e.v0), vertex(lines[kind], e.v1);
-    }
-    const std::vector<uint32_t>& wi = b.weld.indices;
-    for (size_t t = 0; t < b.topology.face_flags.size() && 3 * t + 2 < wi.size(); ++t)
-      if (b.topology.face_flags[t] & (geom::kFaceCollapsed | geom::kFaceZeroArea))
-        for (int k = 0; k < 3; ++k) vertex(lines[3], wi[3 * t + k]), vertex(lines[3], wi[3 * t + (k + 1) % 3]);
-    std::vector<float> all;
-    for (int k = 0; k < 4; ++k) {
-      c.line_first[k] = GLsizei(all.size() / 3);
-      c.line_count[k] = GLsizei(lines[k].size() / 3);
-      all.insert(all.end(), lines[k].begin(), lines[k].end());
-    }
-    upload(c.lines, all.data(), all.size() * sizeof(float), "caster inspection lines");
-    glCreateVertexArrays(1, &c.lines_vao.id);
-    glVertexArrayVertexBuffer(c.lines_vao, 0, c.lines, 0, 3 * sizeof(float));
-    attribute(c.lines_vao, 0, 3, GL_FLOAT, 0, false);
-    label(GL_VERTEX_ARRAY, c.lines_vao, "caster inspection lines");
-    s.casters.push_back(std::move(c));
+    CasterSource src;
+    src.origin = glm::dvec3(b.planes.origin[0], b.planes.origin[1], b.planes.origin[2]);
+    src.welded = b.weld.positions.data(), src.welded_count = b.weld.vertex_count();
+    src.adjacency = b.adjacency.data(), src.adjacency_count = b.adjacency.size();
+    src.esm = b.esm.quads.data(), src.esm_count = b.esm.quads.size();
+    src.esm_planes = b.esm.planes.data(), src.esm_plane_count = b.esm.planes.size() / 4;
+    src.sides = b.volume.sides.data(), src.side_count = b.volume.sides.size();
+    src.caps = b.volume.caps.data(), src.cap_count = b.volume.caps.size();
+    src.volume_planes = b.volume.planes.data(), src.volume_plane_count = b.volume.planes.size() / 4;
+    src.indices = b.weld.indices.data(), src.triangle_count = tris.size();
+    if (!upload_caster(s, src, error)) return false;
   }
   s.casters_built = true;
   return true;
@@ -851,6 +922,16 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  if (s.baked) {
+    const bool missing = ((fs.technique == Technique::Esm || fs.inspect) && !s.baked_esm) ||
+                         (fs.technique == Technique::Edsm && !s.baked_adjacency) ||
+                         ((fs.technique == Technique::Sv || fs.technique == Technique::SvZPass || fs.technique == Technique::SvZFail) && !s.baked_volume);
+    if (missing) {
+      error = std::string("the baked file has no buffers for ") + (fs.inspect ? "inspection" : technique_name(fs.technique)) +
+              " (bake it with ESM quads, the shadow volume and adjacency)";
+      return false;
+    }
+  }
   if (needs_casters(fs) && !s.casters_built) {
     timer.begin("silhouette buffers (bake, once)");
     const bool ok = build_casters(s, error);
@@ -1067,6 +1148,74 @@ StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, s
     glVertexArrayAttribBinding(s->scene_vao, a, 0);
   }
   label(GL_VERTEX_ARRAY, s->scene_vao, "scene");
+  return s;
+}
+
+StatePtr create_state_baked(const void* bytes, size_t size, const std::string& shader_dir, geom::Scene& scene,
+                            std::string& error) {
+  namespace gb = geom::baked;
+  gb::Reader reader;
+  if (!reader.open(bytes, size)) {
+    error = reader.error();
+    return nullptr;
+  }
+  const gb::Section* positions = reader.find(gb::SectionType::Positions);
+  const gb::Section* indices = reader.find(gb::SectionType::Indices);
+  if (!positions || !indices || !positions->as<float[3]>() || !indices->as<uint32_t>() || indices->count % 3) {
+    error = "no usable positions and indices sections (bake with both)";
+    return nullptr;
+  }
+  scene = geom::Scene();
+  const float* p = positions->as<float[3]>()[0];
+  scene.positions.assign(p, p + 3 * positions->count);
+  scene.indices.assign(indices->as<uint32_t>(), indices->as<uint32_t>() + indices->count);
+  for (uint32_t i : scene.indices)
+    if (i >= positions->count) {
+      error = "an index of the indices section is out of range";
+      return nullptr;
+    }
+  scene.sources.resize(scene.triangle_count());
+  if (const gb::Section* lights = reader.find(gb::SectionType::Lights); lights && lights->as<double[4]>())
+    for (uint64_t i = 0; i < lights->count; ++i) {
+      const double* l = lights->as<double[4]>()[i];
+      geom::Light light;
+      light.type = l[3] == 0 ? geom::LightType::Directional : geom::LightType::Point;
+      for (int k = 0; k < 3; ++k) {
+        light.position[k] = float(l[3] == 0 ? 0 : l[k] / l[3]);
+        light.direction[k] = float(l[3] == 0 ? -l[k] : 0);
+      }
+      scene.lights.push_back(light);
+    }
+  StatePtr s = create_state(scene, shader_dir, error);
+  if (!s) return nullptr;
+  // The one caster: the file's buffers as they lie.
+  CasterSource src;
+  src.welded = p, src.welded_count = positions->count;
+  src.indices = scene.indices.data(), src.triangle_count = scene.triangle_count();
+  if (const gb::Section* frame = reader.find(gb::SectionType::Frame); frame && frame->as<double[3]>() && frame->count == 1)
+    src.origin = glm::dvec3(frame->as<double[3]>()[0][0], frame->as<double[3]>()[0][1], frame->as<double[3]>()[0][2]);
+  const gb::Section* adjacency = reader.find(gb::SectionType::AdjacencyIndices);
+  s->baked_adjacency = adjacency && adjacency->as<uint32_t>() && adjacency->count == 2 * indices->count;
+  if (s->baked_adjacency) src.adjacency = adjacency->as<uint32_t>(), src.adjacency_count = adjacency->count;
+  const gb::Section* esm = reader.find(gb::SectionType::EsmQuads);
+  const gb::Section* esm_planes = reader.find(gb::SectionType::EsmPlanes);
+  s->baked_esm = esm && esm_planes && esm->as<geom::EsmQuad>() && esm_planes->as<float[4]>();
+  if (s->baked_esm) {
+    src.esm = esm->as<geom::EsmQuad>(), src.esm_count = esm->count;
+    src.esm_planes = esm_planes->as<float[4]>()[0], src.esm_plane_count = esm_planes->count;
+  }
+  const gb::Section* sides = reader.find(gb::SectionType::VolumeSides);
+  const gb::Section* caps = reader.find(gb::SectionType::VolumeCaps);
+  const gb::Section* planes = reader.find(gb::SectionType::VolumePlanes);
+  s->baked_volume = sides && caps && planes && sides->as<geom::SvSide>() && caps->as<geom::SvCap>() && planes->as<float[4]>();
+  if (s->baked_volume) {
+    src.sides = sides->as<geom::SvSide>(), src.side_count = sides->count;
+    src.caps = caps->as<geom::SvCap>(), src.cap_count = caps->count;
+    src.volume_planes = planes->as<float[4]>()[0], src.volume_plane_count = planes->count;
+  }
+  if (!upload_caster(*s, src, error)) return nullptr;
+  s->baked = true;
+  s->casters_built = true;
   return s;
 }
 

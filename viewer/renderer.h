@@ -64,6 +64,14 @@ using StatePtr = std::unique_ptr<State, StateDeleter>;
 // the life of the state). `shader_dir` holds the shaders/ files.
 StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, std::string& error);
 
+// Reads a baked container (geom/baked_reader.h, written by `geombake bake`) and
+// draws its buffers: the welded triangles (`positions`, `indices`) as the scene,
+// its ESM quads, shadow volume and adjacency buffer as one caster, as they lie.
+// `scene` receives the triangles and the baked static lights (for a default
+// light and the reference). Every index in the file is checked before upload.
+StatePtr create_state_baked(const void* bytes, size_t size, const std::string& shader_dir, geom::Scene& scene,
+                            std::string& error);
+
 // Renders one frame into an offscreen framebuffer of view.width x view.height and
 // reads it back into `image` (Output::Mask: 1 channel, 255 lit / 0 shadow / 128
 // background; Output::Color: 3 channels), top row first. `times` receives the time
