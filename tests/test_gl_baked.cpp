@@ -67,6 +67,45 @@ TEST(GlBaked, VolumesFromTheFileMatchTheReference) {
   }
 }
 
+// A light the scene declares gets its exact volume (build_light_volume), baked in
+// process or read from the file; the mask stays exact.
+TEST(GlBaked, ExactVolumesOfDeclaredLights) {
+  ASSERT_NE(context(), nullptr);
+  geom::Scene s = scene();
+  geom::Light point;
+  point.type = geom::LightType::Point;
+  point.position[0] = -1.0f, point.position[1] = 5.0f, point.position[2] = -2.0f;
+  s.lights.push_back(point);
+  geom::Light sun;
+  sun.type = geom::LightType::Directional;
+  sun.direction[0] = -0.5f, sun.direction[1] = -1.0f, sun.direction[2] = 0.3f;  // travels along
+  s.lights.push_back(sun);
+  const std::vector<unsigned char> bytes = baked_bytes(s);
+  geom::Scene from_file;
+  std::string error;
+  auto baked = viewer::create_state_baked(bytes.data(), bytes.size(), GEOMVIEW_SHADER_DIR, from_file, error);
+  ASSERT_TRUE(baked) << error;
+  auto in_process = viewer::create_state(s, GEOMVIEW_SHADER_DIR, error);
+  ASSERT_TRUE(in_process) << error;
+  viewer::LightSetup l0, l1;
+  l0.position = glm::vec4(-1.0f, 5.0f, -2.0f, 1);
+  l1.position = glm::vec4(0.5f, 1.0f, -0.3f, 0);
+  for (viewer::State* state : {baked.get(), in_process.get()})
+    for (const viewer::LightSetup& l : {l0, l1})
+      for (Technique t : {Technique::SvZPass, Technique::SvZFail}) {
+        const Comparison c = render_and_compare(*state, s, view(), l, t, 256);
+        EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain;
+        viewer::FrameSettings fs;
+        fs.technique = t;
+        geom::PngImage image;
+        std::vector<viewer::PassTime> times;
+        ASSERT_TRUE(viewer::render(*state, view(), l, fs, image, times, error)) << error;
+        bool exact = false;
+        for (const auto& pt : times) exact = exact || pt.pass.find("exact") != std::string::npos;
+        EXPECT_TRUE(exact) << "the declared light's exact volume should be drawn";
+      }
+}
+
 TEST(GlBaked, MissingBuffersAreNamed) {
   ASSERT_NE(context(), nullptr);
   geom::BakeOptions options;

@@ -29,6 +29,7 @@
 
 #include "geom/focus.h"
 #include "geom/baked_reader.h"
+#include "geom/extrude.h"
 #include "geom/silhouette.h"
 #include "geom/topology.h"
 
@@ -150,6 +151,16 @@ struct Caster {
   Texture sv_planes;
   VertexArray sides_vao, caps_vao;
   GLsizei side_count = 0, cap_count = 0;
+  // Exact volumes of the static lights (geom/shadow_volume.h build_light_volume):
+  // used instead of the generic one when the frame's light is one of them.
+  struct LightVolume {
+    glm::dvec4 light{0};  // input coordinates
+    Buffer sides, caps, plane_buffer;
+    Texture planes;
+    VertexArray sides_vao, caps_vao;
+    GLsizei side_count = 0, cap_count = 0;
+  };
+  std::vector<LightVolume> light_volumes;
   // Inspection lines (world): boundary, non-manifold, inconsistent edges, then degenerate faces' edges.
   Buffer lines;
   VertexArray lines_vao;
@@ -435,7 +446,37 @@ struct CasterSource {
   size_t volume_plane_count = 0;
   const uint32_t* indices = nullptr;  // 3 per triangle, into welded (for the inspection lines)
   size_t triangle_count = 0;
+  struct LightVolume {
+    glm::dvec4 light{0};
+    const geom::SvSide* sides = nullptr;
+    size_t side_count = 0;
+    const geom::SvCap* caps = nullptr;
+    size_t cap_count = 0;
+    const float* planes = nullptr;
+    size_t plane_count = 0;
+  };
+  std::vector<LightVolume> light_volumes;
 };
+
+// Vertex arrays of volume sides and caps (geom/shadow_volume.h layout).
+void volume_arrays(VertexArray& sides_vao, VertexArray& caps_vao, GLuint sides, GLuint caps) {
+  glCreateVertexArrays(1, &sides_vao.id);
+  glVertexArrayVertexBuffer(sides_vao, 0, sides, 0, sizeof(geom::SvSide));
+  glVertexArrayBindingDivisor(sides_vao, 0, 1);
+  attribute(sides_vao, 0, 3, GL_FLOAT, 0, false);
+  attribute(sides_vao, 1, 3, GL_FLOAT, 12, false);
+  attribute(sides_vao, 3, 1, GL_UNSIGNED_INT, 24, true);
+  attribute(sides_vao, 4, 1, GL_UNSIGNED_INT, 28, true);
+  label(GL_VERTEX_ARRAY, sides_vao, "volume sides");
+  glCreateVertexArrays(1, &caps_vao.id);
+  glVertexArrayVertexBuffer(caps_vao, 0, caps, 0, sizeof(geom::SvCap));
+  glVertexArrayBindingDivisor(caps_vao, 0, 1);
+  attribute(caps_vao, 0, 3, GL_FLOAT, 0, false);
+  attribute(caps_vao, 1, 3, GL_FLOAT, 12, false);
+  attribute(caps_vao, 2, 3, GL_FLOAT, 24, false);
+  attribute(caps_vao, 3, 1, GL_UNSIGNED_INT, 36, true);
+  label(GL_VERTEX_ARRAY, caps_vao, "volume caps");
+}
 
 template <class Record>
 bool planes_in_range(const Record* records, size_t count, size_t planes, uint32_t Record::*first, uint32_t Record::*second) {
@@ -500,22 +541,22 @@ bool upload_caster(State& s, const CasterSource& src, std::string& error) {
   upload(c.sv_caps, src.caps, src.cap_count * sizeof(geom::SvCap), "caster volume caps");
   plane_texture(c.sv_planes, c.sv_plane_buffer, src.volume_planes, src.volume_plane_count, "caster volume planes");
   c.side_count = GLsizei(src.side_count), c.cap_count = GLsizei(src.cap_count);
-  glCreateVertexArrays(1, &c.sides_vao.id);
-  glVertexArrayVertexBuffer(c.sides_vao, 0, c.sv_sides, 0, sizeof(geom::SvSide));
-  glVertexArrayBindingDivisor(c.sides_vao, 0, 1);
-  attribute(c.sides_vao, 0, 3, GL_FLOAT, 0, false);
-  attribute(c.sides_vao, 1, 3, GL_FLOAT, 12, false);
-  attribute(c.sides_vao, 3, 1, GL_UNSIGNED_INT, 24, true);
-  attribute(c.sides_vao, 4, 1, GL_UNSIGNED_INT, 28, true);
-  label(GL_VERTEX_ARRAY, c.sides_vao, "caster volume sides");
-  glCreateVertexArrays(1, &c.caps_vao.id);
-  glVertexArrayVertexBuffer(c.caps_vao, 0, c.sv_caps, 0, sizeof(geom::SvCap));
-  glVertexArrayBindingDivisor(c.caps_vao, 0, 1);
-  attribute(c.caps_vao, 0, 3, GL_FLOAT, 0, false);
-  attribute(c.caps_vao, 1, 3, GL_FLOAT, 12, false);
-  attribute(c.caps_vao, 2, 3, GL_FLOAT, 24, false);
-  attribute(c.caps_vao, 3, 1, GL_UNSIGNED_INT, 36, true);
-  label(GL_VERTEX_ARRAY, c.caps_vao, "caster volume caps");
+  volume_arrays(c.sides_vao, c.caps_vao, c.sv_sides, c.sv_caps);
+  for (const CasterSource::LightVolume& lv : src.light_volumes) {
+    if (!planes_in_range(lv.sides, lv.side_count, lv.plane_count, &geom::SvSide::plane_a, &geom::SvSide::plane_b) ||
+        !planes_in_range<geom::SvCap>(lv.caps, lv.cap_count, lv.plane_count, &geom::SvCap::plane, nullptr)) {
+      error = "a light volume record refers to a plane out of range";
+      return false;
+    }
+    Caster::LightVolume v;
+    v.light = lv.light;
+    upload(v.sides, lv.sides, lv.side_count * sizeof(geom::SvSide), "light volume sides");
+    upload(v.caps, lv.caps, lv.cap_count * sizeof(geom::SvCap), "light volume caps");
+    plane_texture(v.planes, v.plane_buffer, lv.planes, lv.plane_count, "light volume planes");
+    v.side_count = GLsizei(lv.side_count), v.cap_count = GLsizei(lv.cap_count);
+    volume_arrays(v.sides_vao, v.caps_vao, v.sides, v.caps);
+    c.light_volumes.push_back(std::move(v));
+  }
   // Inspection lines: boundary, non-manifold and inconsistent edges; degenerate faces.
   const geom::Topology topology =
       geom::build_topology(geom::positions_of(src.welded, src.welded_count), src.indices, src.triangle_count);
@@ -564,7 +605,7 @@ bool build_casters(State& s, std::string& error) {
         indices.push_back(it->second);
       }
     const geom::SilhouetteBuffers b = geom::bake_silhouettes(geom::positions_of(positions.data(), positions.size() / 3),
-                                                             indices.data(), tris.size(), {});
+                                                             indices.data(), tris.size(), geom::scene_lights(scene));
     if (b.adjacency.size() != 6 * tris.size() || b.weld.indices.size() != 3 * tris.size()) {
       error = "the silhouette bake failed";
       return false;
@@ -579,6 +620,11 @@ bool build_casters(State& s, std::string& error) {
     src.caps = b.volume.caps.data(), src.cap_count = b.volume.caps.size();
     src.volume_planes = b.volume.planes.data(), src.volume_plane_count = b.volume.planes.size() / 4;
     src.indices = b.weld.indices.data(), src.triangle_count = tris.size();
+    for (const geom::LightVolume& lv : b.lights)
+      if (lv.volume.per_light)
+        src.light_volumes.push_back({glm::dvec4(lv.light[0], lv.light[1], lv.light[2], lv.light[3]),
+                                     lv.volume.sides.data(), lv.volume.sides.size(), lv.volume.caps.data(),
+                                     lv.volume.caps.size(), lv.volume.planes.data(), lv.volume.planes.size() / 4});
     if (!upload_caster(s, src, error)) return false;
   }
   s.casters_built = true;
@@ -586,8 +632,20 @@ bool build_casters(State& s, std::string& error) {
 }
 
 // The light in a caster's local frame (geom/face_planes.h).
-glm::vec4 local_light(const Caster& c, const glm::vec4& light) {
-  return glm::vec4(glm::dvec3(light) - c.origin * double(light.w), light.w);
+glm::vec4 local_light(const Caster& c, const glm::dvec4& light) {
+  const double origin[3] = {c.origin.x, c.origin.y, c.origin.z}, l[4] = {light.x, light.y, light.z, light.w};
+  float out[4];
+  geom::to_local_light(origin, l, out);
+  return glm::vec4(out[0], out[1], out[2], out[3]);
+}
+
+// The exact volume of a static light equal to `light` (relative 1e-6), if any.
+const Caster::LightVolume* light_volume(const Caster& c, const glm::vec4& light) {
+  for (const Caster::LightVolume& v : c.light_volumes) {
+    const double scale = std::max(1.0, glm::length(glm::dvec3(v.light)));
+    if (v.light.w == double(light.w) && glm::length(glm::dvec3(v.light) - glm::dvec3(light)) <= 1e-6 * scale) return &v;
+  }
+  return nullptr;
 }
 glm::mat4 local_to_world(const Caster& c) { return glm::translate(glm::dmat4(1), c.origin); }
 
@@ -755,7 +813,9 @@ bool volume_pass(State& s, const View& view, const glm::mat4& view_proj, const L
   GLuint p = program(s, {"shadow_volume.vert", "volume.frag"}, error);
   if (!p) return false;
   set(p, "u_planes", 2);
-  timer.begin("stencil volumes");
+  bool any_exact = false;
+  for (const Caster& c : s.casters) any_exact = any_exact || light_volume(c, light.position);
+  timer.begin(any_exact ? "stencil volumes (exact for this static light)" : "stencil volumes");
   glEnable(GL_STENCIL_TEST);
   glStencilFunc(GL_ALWAYS, 0, 0xff);
   glStencilMask(0xff);
@@ -767,9 +827,11 @@ bool volume_pass(State& s, const View& view, const glm::mat4& view_proj, const L
   for (const Caster& c : s.casters) {
     const bool zfail = t == Technique::SvZFail ||
                        (t == Technique::Sv && camera_may_be_in_volume(c, view.eye, near_radius, light.position));
+    const Caster::LightVolume* exact = light_volume(c, light.position);
+    const glm::dvec4 l = exact ? exact->light : glm::dvec4(light.position);
     set(p, "u_view_proj", view_proj * local_to_world(c));
-    set(p, "u_light", local_light(c, light.position));
-    glBindTextureUnit(2, c.sv_planes);
+    set(p, "u_light", local_light(c, l));
+    glBindTextureUnit(2, exact ? GLuint(exact->planes) : GLuint(c.sv_planes));
     if (zfail) {  // back faces increment, front faces decrement where the depth test fails
       glStencilOpSeparate(GL_BACK, GL_KEEP, GL_INCR_WRAP, GL_KEEP);
       glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
@@ -778,12 +840,12 @@ bool volume_pass(State& s, const View& view, const glm::mat4& view_proj, const L
       glStencilOpSeparate(GL_BACK, GL_KEEP, GL_KEEP, GL_DECR_WRAP);
     }
     set(p, "u_caps", 0);
-    glBindVertexArray(c.sides_vao);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.side_count);
+    glBindVertexArray(exact ? GLuint(exact->sides_vao) : GLuint(c.sides_vao));
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, exact ? exact->side_count : c.side_count);
     if (zfail) {
       set(p, "u_caps", 1);
-      glBindVertexArray(c.caps_vao);
-      glDrawArraysInstanced(GL_TRIANGLES, 0, 6, c.cap_count);
+      glBindVertexArray(exact ? GLuint(exact->caps_vao) : GLuint(c.caps_vao));
+      glDrawArraysInstanced(GL_TRIANGLES, 0, 6, exact ? exact->cap_count : c.cap_count);
     }
   }
   glDisable(GL_DEPTH_CLAMP);
@@ -1094,6 +1156,7 @@ StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, s
   s->scene.positions = scene.positions;
   s->scene.indices = scene.indices;
   s->scene.sources = scene.sources;
+  s->scene.lights = scene.lights;
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   s->renderer = renderer ? renderer : "?";
   const bool software = std::strstr(s->renderer.c_str(), "llvmpipe") || std::strstr(s->renderer.c_str(), "softpipe") ||
@@ -1213,6 +1276,16 @@ StatePtr create_state_baked(const void* bytes, size_t size, const std::string& s
     src.caps = caps->as<geom::SvCap>(), src.cap_count = caps->count;
     src.volume_planes = planes->as<float[4]>()[0], src.volume_plane_count = planes->count;
   }
+  if (const gb::Section* lights = reader.find(gb::SectionType::Lights); lights && lights->as<double[4]>())
+    for (uint32_t i = 0; i < lights->count; ++i) {
+      const gb::Section* ls = reader.find(gb::SectionType::LightSides, i);
+      const gb::Section* lc = reader.find(gb::SectionType::LightCaps, i);
+      const gb::Section* lp = reader.find(gb::SectionType::LightPlanes, i);
+      if (!ls || !lc || !lp || !ls->as<geom::SvSide>() || !lc->as<geom::SvCap>() || !lp->as<float[4]>()) continue;
+      const double* l = lights->as<double[4]>()[i];
+      src.light_volumes.push_back({glm::dvec4(l[0], l[1], l[2], l[3]), ls->as<geom::SvSide>(), ls->count,
+                                   lc->as<geom::SvCap>(), lc->count, lp->as<float[4]>()[0], lp->count});
+    }
   if (!upload_caster(*s, src, error)) return nullptr;
   s->baked = true;
   s->casters_built = true;
