@@ -179,6 +179,7 @@ struct State {
   GLsizei scene_vertices = 0;
   glm::vec4 bounds{0, 0, 0, 1};
   glm::vec3 scene_lo{-1}, scene_hi{1};  // bounding box
+  glm::dvec3 origin{0};  // the scene buffer's local frame (its box centre): far coordinates keep float precision
   // Render targets, re-created when their size changes.
   Target camera, shadow_map, cube, edge_map;
   GLuint depth_sampler = 0;  // reads a depth texture without comparison
@@ -347,6 +348,10 @@ void ensure_cube(State& s, int n) {
   glNamedFramebufferTexture(t.fbo, GL_DEPTH_ATTACHMENT, t.depth, 0);
   label(GL_FRAMEBUFFER, t.fbo, "cube map");
 }
+
+// A world matrix applied to points of a local frame at `origin`, composed in
+// double so that large translations cancel before the result is rounded.
+glm::mat4 at(const glm::dmat4& m, const glm::dvec3& origin) { return glm::mat4(m * glm::translate(glm::dmat4(1), origin)); }
 
 glm::vec3 any_perpendicular(glm::vec3 d) {
   return std::fabs(d.y) < 0.9f * glm::length(d) ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
@@ -647,7 +652,6 @@ const Caster::LightVolume* light_volume(const Caster& c, const glm::vec4& light)
   }
   return nullptr;
 }
-glm::mat4 local_to_world(const Caster& c) { return glm::translate(glm::dmat4(1), c.origin); }
 
 // May the camera's near-plane rectangle lie inside this caster's shadow volume?
 // Conservative (004, depth-pass vs depth-fail): the volume part that can contain
@@ -679,7 +683,7 @@ bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, float slope, P
   ensure_shadow_map(s, n);
   GLuint p = program(s, {"depth.vert", "depth.frag"}, error);
   if (!p) return false;
-  set(p, "u_matrix", light_clip);
+  set(p, "u_matrix", at(glm::dmat4(light_clip), s.origin));
   timer.begin("depth map");
   glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
   glViewport(0, 0, n, n);
@@ -776,7 +780,7 @@ bool esm_pass(State& s, const LightFrame& frame, const LightSetup& light, int n,
   glBindSampler(1, depth_sampler(s));
   glUseProgram(p);
   for (const Caster& c : s.casters) {
-    set(p, "u_light_view_proj", light_clip * local_to_world(c));
+    set(p, "u_light_view_proj", at(glm::dmat4(light_clip), c.origin));
     set(p, "u_light", local_light(c, light.position));
     glBindTextureUnit(2, c.esm_planes);
     glBindVertexArray(c.esm_vao);
@@ -791,14 +795,14 @@ bool esm_pass(State& s, const LightFrame& frame, const LightSetup& light, int n,
 }
 
 // The shared shading pass: scene.vert + shade.frag + the technique's lookup shader.
-GLuint shading_program(State& s, const std::string& lookup, const View& view, const glm::mat4& view_proj,
+GLuint shading_program(State& s, const std::string& lookup, const View& view, const glm::dmat4& view_proj,
                        const LightSetup& light, Output output, std::string& error) {
   GLuint p = program(s, {"scene.vert", "shade.frag", lookup}, error);
   if (!p) return 0;
-  set(p, "u_view_proj", view_proj);
-  set(p, "u_view", glm::lookAt(view.eye, view.target, view.up));
+  set(p, "u_view_proj", at(view_proj, s.origin));
+  set(p, "u_view", at(glm::lookAt(glm::dvec3(view.eye), glm::dvec3(view.target), glm::dvec3(view.up)), s.origin));
   set(p, "u_far", view.far_plane);
-  set(p, "u_light", light.position);
+  set(p, "u_light", glm::vec4(glm::dvec3(light.position) - s.origin * double(light.position.w), light.position.w));
   set(p, "u_spot_direction", glm::normalize(light.spot_direction));
   set(p, "u_spot_cos", light.spot && light.position.w != 0 ? std::cos(glm::radians(light.spot_angle_deg)) : -2.0f);
   set(p, "u_output", output == Output::Mask ? 1 : 0);
@@ -808,7 +812,7 @@ GLuint shading_program(State& s, const std::string& lookup, const View& view, co
 
 // Stencil shadow volumes (004; geom/shadow_volume.h): the volume of every caster,
 // depth-fail (sides and caps) or depth-pass (sides), per caster.
-bool volume_pass(State& s, const View& view, const glm::mat4& view_proj, const LightSetup& light, Technique t,
+bool volume_pass(State& s, const View& view, const glm::dmat4& view_proj, const LightSetup& light, Technique t,
                  float near_radius, PassTimer& timer, std::string& error) {
   GLuint p = program(s, {"shadow_volume.vert", "volume.frag"}, error);
   if (!p) return false;
@@ -829,7 +833,7 @@ bool volume_pass(State& s, const View& view, const glm::mat4& view_proj, const L
                        (t == Technique::Sv && camera_may_be_in_volume(c, view.eye, near_radius, light.position));
     const Caster::LightVolume* exact = light_volume(c, light.position);
     const glm::dvec4 l = exact ? exact->light : glm::dvec4(light.position);
-    set(p, "u_view_proj", view_proj * local_to_world(c));
+    set(p, "u_view_proj", at(view_proj, c.origin));
     set(p, "u_light", local_light(c, l));
     glBindTextureUnit(2, exact ? GLuint(exact->planes) : GLuint(c.sv_planes));
     if (zfail) {  // back faces increment, front faces decrement where the depth test fails
@@ -890,7 +894,7 @@ glm::mat4 to_mat4(const double m[16]) {
 
 // Inspection overlay: topology problems of the mesh and the silhouette quads of
 // the current light, drawn over the shaded frame.
-bool inspection_pass(State& s, const View& view, const glm::mat4& view_proj, const LightSetup& light,
+bool inspection_pass(State& s, const View& view, const glm::dmat4& view_proj, const LightSetup& light,
                      geom::FocusMethod method, int w, int h, PassTimer& timer, std::string& error) {
   GLuint lines = program(s, {"inspect.vert", "inspect.frag"}, error);
   GLuint quads = lines ? program(s, {"esm_quad.vert", "inspect.frag"}, error) : 0;
@@ -903,7 +907,7 @@ bool inspection_pass(State& s, const View& view, const glm::mat4& view_proj, con
   glPolygonOffset(-1.0f, -4.0f);
   const glm::vec4 colours[4] = {{1.0f, 0.85f, 0.1f, 1}, {1.0f, 0.1f, 0.1f, 1}, {0.9f, 0.2f, 1.0f, 1}, {0.1f, 0.9f, 1.0f, 1}};
   glUseProgram(lines);
-  set(lines, "u_matrix", view_proj);
+  set(lines, "u_matrix", glm::mat4(view_proj));
   for (const Caster& c : s.casters)
     for (int k = 0; k < 4; ++k) {
       set(lines, "u_colour", colours[k]);
@@ -915,9 +919,9 @@ bool inspection_pass(State& s, const View& view, const glm::mat4& view_proj, con
   glUseProgram(quads);
   set(quads, "u_colour", glm::vec4(1.0f, 0.45f, 0.0f, 1));
   set(quads, "u_planes", 2);
-  set(quads, "u_extrude_scale", 2.0f * 3.0f / (float(std::max(w, h)) * std::fabs(view_proj[1][1]) + 1e-30f));
+  set(quads, "u_extrude_scale", 2.0f * 3.0f / (float(std::max(w, h)) * std::fabs(float(view_proj[1][1])) + 1e-30f));
   for (const Caster& c : s.casters) {
-    set(quads, "u_light_view_proj", view_proj * local_to_world(c));
+    set(quads, "u_light_view_proj", at(view_proj, c.origin));
     set(quads, "u_light", local_light(c, light.position));
     glBindTextureUnit(2, c.esm_planes);
     glBindVertexArray(c.esm_vao);
@@ -975,7 +979,8 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   const int n = std::clamp(fs.shadow_map_size, 16, 16384);
   const float aspect = float(w) / float(h);
   const glm::mat4 camera_proj = glm::infinitePerspective(glm::radians(view.fovy_deg), aspect, view.near_plane);
-  const glm::mat4 view_proj = camera_proj * glm::lookAt(view.eye, view.target, view.up);
+  const glm::dmat4 view_proj =
+      glm::dmat4(camera_proj) * glm::lookAt(glm::dvec3(view.eye), glm::dvec3(view.target), glm::dvec3(view.up));
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   glDisable(GL_STENCIL_TEST);
@@ -1059,9 +1064,9 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
       if (!p) return false;
       for (int f = 0; f < 6; ++f) {
         const std::string name = "u_face[" + std::to_string(f) + "]";
-        set(p, name.c_str(), to_mat4(faces[f]));
+        set(p, name.c_str(), at(glm::make_mat4(faces[f]), s.origin));
       }
-      set(p, "u_light_position", L);
+      set(p, "u_light_position", glm::vec3(glm::dvec3(L) - s.origin));
       timer.begin(focused ? "cube map (focus: point light among the receivers)" : "cube map");
       glBindFramebuffer(GL_FRAMEBUFFER, s.cube.fbo);
       glViewport(0, 0, n, n);
@@ -1086,7 +1091,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
 
   GLuint p = shading_program(s, lookup, view, view_proj, light, fs.output, error);
   if (!p) return false;
-  set(p, "u_light_matrix", frame.clip());
+  set(p, "u_light_matrix", at(glm::dmat4(frame.clip()), s.origin));
   set(p, "u_shadow_map", 0);
   set(p, "u_distance_map", 1);
   set(p, "u_edge_map", 1);
@@ -1144,7 +1149,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   const geom::FocusMethod method = t == Technique::Lispsm    ? geom::FocusMethod::Lispsm
                                    : t == Technique::Uniform ? geom::FocusMethod::Uniform
                                                              : geom::FocusMethod::Psm;
-  if (fs.inspect && !inspection_pass(s, view, view_proj, light, method, w, h, timer, error)) return false;
+  if (fs.inspect && fs.output != Output::Mask && !inspection_pass(s, view, view_proj, light, method, w, h, timer, error)) return false;
   return true;
 }
 
@@ -1173,6 +1178,14 @@ StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, s
   std::vector<float> vertices;
   const size_t tris = scene.triangle_count(), nv = scene.vertex_count();
   vertices.reserve(tris * 18);
+  glm::dvec3 dlo(1e300), dhi(-1e300);
+  for (size_t i = 0; i < 3 * tris; ++i) {
+    const uint32_t v = scene.indices[i];
+    if (v >= nv) continue;
+    const glm::dvec3 p(scene.positions[3 * size_t(v)], scene.positions[3 * size_t(v) + 1], scene.positions[3 * size_t(v) + 2]);
+    dlo = glm::min(dlo, p), dhi = glm::max(dhi, p);
+  }
+  if (tris) s->origin = (dlo + dhi) * 0.5;
   glm::vec3 lo(1e30f), hi(-1e30f);
   for (size_t t = 0; t < tris; ++t) {
     glm::vec3 p[3];
@@ -1190,7 +1203,8 @@ StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, s
     const float len = glm::length(n);
     n = len > 0 ? n / len : glm::vec3(0);
     for (int k = 0; k < 3; ++k) {
-      vertices.insert(vertices.end(), {p[k].x, p[k].y, p[k].z, n.x, n.y, n.z});
+      const glm::vec3 local(glm::dvec3(p[k]) - s->origin);
+      vertices.insert(vertices.end(), {local.x, local.y, local.z, n.x, n.y, n.z});
       lo = glm::min(lo, p[k]), hi = glm::max(hi, p[k]);
     }
   }

@@ -50,7 +50,7 @@ struct FrameSettings {
   Technique technique = Technique::Ssm;
   Output output = Output::Color;
   int shadow_map_size = 1024;
-  bool inspect = false;  // overlay: silhouette quads, topology problems, focus body
+  bool inspect = false;  // overlay: silhouette quads, topology problems, focus body (colour output only)
 };
 
 struct State;  // the one state struct (GL objects, buffers, cached programs)

@@ -79,8 +79,17 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
   std::unique_ptr<RTCSceneTy, SceneDeleter> scene(rtcNewScene(device.get()));
   rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
-  // Scene extent, for the self-intersection offset of shadow rays.
-  double extent = 0;
+  // Rays are cast in a local frame centred on the scene's box, so that a scene
+  // far from the origin keeps float precision; `extent` (its half diagonal)
+  // scales the self-intersection offset of shadow rays.
+  V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (size_t i = 0; i < index_count; ++i) {
+    const Float3& p = positions[indices[i]];
+    lo = {std::min(lo.x, double(p.x)), std::min(lo.y, double(p.y)), std::min(lo.z, double(p.z))};
+    hi = {std::max(hi.x, double(p.x)), std::max(hi.y, double(p.y)), std::max(hi.z, double(p.z))};
+  }
+  const V3 centre = tri_count ? (lo + hi) * 0.5 : V3{0, 0, 0};
+  const double extent = tri_count ? std::sqrt(dot(hi - lo, hi - lo)) * 0.5 : 1.0;
   if (tri_count) {
     RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     float* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -94,8 +103,7 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
     }
     for (size_t i = 0; i < positions.size(); ++i) {
       const Float3& p = positions[i];
-      vb[3 * i] = p.x, vb[3 * i + 1] = p.y, vb[3 * i + 2] = p.z;
-      extent = std::max({extent, std::fabs(double(p.x)), std::fabs(double(p.y)), std::fabs(double(p.z))});
+      vb[3 * i] = float(p.x - centre.x), vb[3 * i + 1] = float(p.y - centre.y), vb[3 * i + 2] = float(p.z - centre.z);
     }
     for (size_t i = 0; i < index_count; ++i) ib[i] = indices[i];
     rtcCommitGeometry(geometry);
@@ -110,16 +118,16 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
 
   // Camera basis: forward f, right r, true up u; the ray direction of a pixel has
   // view-space depth 1, so the ray parameter is the view depth ([near, far]).
-  const V3 eye = v3(camera.eye);
-  const V3 f = normalize(v3(camera.target) - eye);
+  const V3 eye = v3(camera.eye) - centre;
+  const V3 f = normalize(v3(camera.target) - v3(camera.eye));
   const V3 r = normalize(cross(f, v3(camera.up)));
   const V3 u = cross(r, f);
   const double ty = std::tan(camera.fovy_deg * M_PI / 360.0), tx = ty * W / H;
-  const V3 L = v3(light.position);
   const double Lw = light.position[3];
+  const V3 L = v3(light.position) - centre * Lw;
   const V3 spot_axis = normalize(v3(light.spot_direction));
   const double spot_cos = std::cos(light.spot_angle_deg * M_PI / 180.0);
-  const double offset = 1e-5 * std::max(extent, 1.0);
+  const double offset = 1e-5 * std::max(extent, 1e-30);
 
   out.width = W, out.height = H;
   out.mask.assign(size_t(W) * H, 128);
@@ -140,7 +148,7 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
       const uint32_t* t = indices + 3 * size_t(rh.hit.primID);
       const Float3 &a = positions[t[0]], &b = positions[t[1]], &c = positions[t[2]];
-      const V3 A{a.x, a.y, a.z}, B{b.x, b.y, b.z}, C{c.x, c.y, c.z};
+      const V3 A = V3{a.x, a.y, a.z} - centre, B = V3{b.x, b.y, b.z} - centre, C = V3{c.x, c.y, c.z} - centre;
       const double bu = rh.hit.u, bv = rh.hit.v;
       const V3 P = A * (1 - bu - bv) + B * bu + C * bv;
       V3 n = normalize(cross(B - A, C - A));
