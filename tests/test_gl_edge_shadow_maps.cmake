@@ -1,1 +1,1 @@
-include(${CMAKE_CURRENT_SOURCE_DIR}/test_gl_shadow_maps.cmake)
+include(${CMAKE_CURRENT_SOURCE_DIR}/gl_test.cmake)
