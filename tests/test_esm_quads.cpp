@@ -176,11 +176,17 @@ TEST(EsmQuads, OpenExactlyForSilhouetteEdges) {
   }
 }
 
-TEST(EsmQuads, ClosedConvexSilhouetteLoops) {
+// Closed loops: on convex meshes (nothing concave to skip), and on a torus
+// with EsmOptions::keep_concave (every non-coplanar edge kept).
+TEST(EsmQuads, ClosedSilhouetteLoops) {
   std::mt19937 rng(3);
-  for (const Mesh& m : {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(20, 11)}) {
-    const fixtures::Baked b = fixtures::bake(m);
+  geom::EsmOptions keep;
+  keep.keep_concave = true;
+  for (const Mesh& m : {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(20, 11), fixtures::torus(16, 9)}) {
+    const bool torus = m.name == "torus";
+    const fixtures::Baked b = fixtures::bake(m, {}, torus ? keep : geom::EsmOptions{});
     EXPECT_EQ(b.esm.stats.skipped_concave, 0u);
+    if (torus) EXPECT_EQ(b.esm.stats.emitted_edges, b.esm.stats.candidate_edges - b.esm.stats.skipped_coplanar);
     for (const Light& l : random_lights(m, rng)) {
       const double wl[4] = {l.xyz[0], l.xyz[1], l.xyz[2], l.w};
       float lf[4], mvp[16], c[4][4];

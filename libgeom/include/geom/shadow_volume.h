@@ -49,6 +49,15 @@
 // frustum, a sliver around that plane. Degenerate faces have no plane and no
 // frustum volume: they contribute nothing (geom/face_planes.h).
 //
+// Limits. A light exactly at a vertex gives that corner no extrusion
+// direction: the shaders send it to (0, 0, -1, 0) (kAtLight), so the volume is
+// that of the light moved an infinitesimal step along +z, closed and finite.
+// A light within float rounding of a face's interior (about 1e-7 of the
+// scene's size in the local frame) makes that face's frustum a half-space whose
+// side rounding decides: the volume stays closed and finite, but the count
+// behind that face may be wrong. Lights 1e-5 of the scene's size off the
+// surface and beyond are exact (tests/test_shadow_volume.cpp).
+//
 // Drawing. Depth-fail (z-fail, camera anywhere): sides and caps, back faces
 // increment on depth fail, front faces decrement. Depth-pass (camera outside
 // every volume): sides only, front faces increment on depth pass, back faces
@@ -112,6 +121,7 @@ struct ShadowVolumeStats {
   uint64_t pair_edges = 0;         // manifold consistent edges given a pair record
   uint64_t single_records = 0;     // boundary, inconsistent and non-manifold face records
   uint64_t skipped_coplanar = 0;   // pair edges not emitted: shared stored plane
+  uint64_t skipped_coplanar_records = 0;  // the records they would have taken (2 each double-sided)
   uint64_t one_sided_faces = 0;    // faces of closed components, with one_sided_closed
   uint64_t double_sided_faces = 0; // all other non-degenerate faces
   uint64_t degenerate_faces = 0;   // no plane, no cap
@@ -119,6 +129,8 @@ struct ShadowVolumeStats {
   uint64_t bytes = 0;              // sides * 32 + caps * 40 + planes * 16
   uint64_t naive_sides = 0;        // one record per edge and face: every face's own frustum
   uint64_t naive_bytes = 0;        // naive_sides * 32 + caps * 40 + planes * 16
+  uint64_t components = 0, closed_components = 0;
+  uint64_t light_one_sided = 0;    // per-light volume: closed components treated one-sided
 };
 
 struct ShadowVolume {
@@ -127,6 +139,10 @@ struct ShadowVolume {
   std::vector<SvSide> sides;
   std::vector<SvCap> caps;
   ShadowVolumeStats stats;
+  // CPU-side, not uploaded: per record, its component (faces connected through
+  // shared edges); per component, whether it is closed. build_light_volume uses them.
+  std::vector<uint32_t> side_component, cap_component;
+  std::vector<uint8_t> component_closed;
   // Set by build_light_volume: the light (local frame) this volume is exact for.
   bool per_light = false;
   float light[4] = {0, 0, 0, 0};
@@ -142,11 +158,18 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
                                  const ShadowVolumeOptions& options = {});
 
 // The exact volume of one static light (local frame, w = 1 point, w = 0 direction
-// towards the light): only the side records that open for it, each repeated by
-// its multiplicity, and only the caps that draw. Same layout and shader; its
-// plane table is {L / |L|^2, -L / |L|^2} (index 0 always in front, 1 always
-// behind for that light), so the GPU reproduces the CPU's decisions exactly.
-// Returns an empty volume with per_light = false when the light is all zeros.
+// towards the light): only the side records that open for it, and only the
+// caps that draw. Closed components get the one-sided treatment, now safe
+// because the CPU knows where the light is: the light outside the solid
+// (parity of a ray cast from it in double, the solid's side from its signed
+// volume) counts front faces, inside it counts back faces; each pair record
+// then appears once instead of twice, and a cap only where it counts. A
+// component whose faces come within 1e-6 of its diagonal of the light, or
+// whose ray casts keep grazing an edge, stays double-sided. Same layout and
+// shader; the plane table is {L / |L|^2, -L / |L|^2} (index 0 always in
+// front, 1 always behind for that light), so the GPU reproduces the CPU's
+// decisions exactly. Returns an empty volume with per_light = false when the
+// light is all zeros.
 ShadowVolume build_light_volume(const ShadowVolume& generic, const float light[4]);
 
 }  // namespace geom

@@ -29,6 +29,7 @@ struct SilhouetteOptions {
   float weld_tolerance = 0;  // geom/weld.h
   FacePlaneOptions planes;
   EsmOptions esm;
+  ShadowVolumeOptions volume;
   bool esm_quads = true, shadow_volume = true, adjacency = true;
 };
 
