@@ -42,16 +42,20 @@ static bool cgal_hull(const std::vector<Point>& in, std::vector<Point>& verts,
   mesh.clear();
   CGAL::convex_hull_3(in.begin(), in.end(), mesh);
   if (mesh.number_of_faces() < 4) return false;
+  // Compact indices: the mesh may hold removed vertices (index gaps).
+  thread_local std::vector<size_t> remap;
+  remap.assign(mesh.number_of_vertices() + mesh.number_of_removed_vertices(), size_t(-1));
   for (Mesh::Vertex_index v : mesh.vertices()) {
-    if (size_t(v) >= verts.size()) verts.resize(size_t(v) + 1);
-    verts[size_t(v)] = mesh.point(v);
+    if (size_t(v) >= remap.size()) remap.resize(size_t(v) + 1, size_t(-1));
+    remap[size_t(v)] = verts.size();
+    verts.push_back(mesh.point(v));
   }
   for (Mesh::Face_index f : mesh.faces()) {
     std::array<size_t, 3> t{};
     size_t k = 0;
     for (Mesh::Halfedge_index h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
       if (k == 3) return false;  // quickhull gives triangles only
-      t[k++] = size_t(mesh.target(h));
+      t[k++] = remap[size_t(mesh.target(h))];
     }
     if (k != 3) return false;
     tris.push_back(t);
@@ -247,61 +251,107 @@ void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std
     xyz.push_back(q.z());
   }
   auto at = [&](size_t i) { return V3(verts[i].x(), verts[i].y(), verts[i].z()); };
-  // Coplanar triangles (within tolerance) merge into one convex polygon.
-  struct Group {
-    Plane plane;
-    std::vector<uint32_t> members;
+  // Adjacent triangles that are coplanar within the tolerance merge into one
+  // face (union-find over shared edges), and each face is the boundary loop of
+  // its triangles: the topology stays CGAL's closed surface whatever the
+  // tolerance decides (V - E + F = 2 holds).
+  const size_t nt = tris.size();
+  thread_local std::vector<Plane> planes;
+  thread_local std::vector<double> area;
+  thread_local std::vector<uint32_t> parent;
+  planes.resize(nt);
+  area.resize(nt);
+  parent.resize(nt);
+  for (size_t i = 0; i < nt; ++i) {
+    V3 a = at(tris[i][0]), b = at(tris[i][1]), c = at(tris[i][2]);
+    V3 n = cross(b - a, c - a);
+    area[i] = length(n);
+    planes[i] = plane_through(a, normalize(n));
+    parent[i] = uint32_t(i);
+  }
+  auto find = [&](uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
   };
-  thread_local std::vector<Group> groups;
-  // Largest triangles first: their normals are accurate and seed the groups;
-  // a sliver joins the group whose plane holds its three vertices.
-  thread_local std::vector<std::pair<double, size_t>> by_area;
-  by_area.clear();
-  for (size_t i = 0; i < tris.size(); ++i) {
-    const auto& t = tris[i];
-    by_area.push_back({-length(cross(at(t[1]) - at(t[0]), at(t[2]) - at(t[0]))), i});
-  }
-  std::sort(by_area.begin(), by_area.end());
-  size_t used = 0;
-  for (const auto& ai : by_area) {
-    const auto& t = tris[ai.second];
-    V3 a = at(t[0]), b = at(t[1]), c = at(t[2]);
-    V3 n = normalize(cross(b - a, c - a));
-    Group* g = nullptr;
-    for (size_t i = 0; i < used && !g; ++i) {
-      const Plane& q = groups[i].plane;
-      if (dot(q.n, n) > 0 && std::fabs(q.eval(a)) <= 8 * eps && std::fabs(q.eval(b)) <= 8 * eps &&
-          std::fabs(q.eval(c)) <= 8 * eps)
-        g = &groups[i];
-    }
-    if (!g) {
-      if (used == groups.size()) groups.emplace_back();
-      g = &groups[used++];
-      g->plane = plane_through(a, n);
-      g->members.clear();
-    }
+  // Directed edges (a, b, triangle), sorted to find each edge's twin.
+  thread_local std::vector<std::array<uint32_t, 3>> edges;
+  edges.clear();
+  for (size_t i = 0; i < nt; ++i)
     for (size_t k = 0; k < 3; ++k)
-      if (std::find(g->members.begin(), g->members.end(), uint32_t(t[k])) == g->members.end())
-        g->members.push_back(uint32_t(t[k]));
+      edges.push_back({uint32_t(tris[i][k]), uint32_t(tris[i][(k + 1) % 3]), uint32_t(i)});
+  std::sort(edges.begin(), edges.end());
+  auto twin_of = [&](uint32_t a, uint32_t b) -> int64_t {
+    auto it = std::lower_bound(edges.begin(), edges.end(), std::array<uint32_t, 3>{b, a, 0});
+    return it != edges.end() && (*it)[0] == b && (*it)[1] == a ? int64_t((*it)[2]) : -1;
+  };
+  // A region's plane is that of its largest triangle (the root), so a sliver
+  // along an edge cannot chain the two faces it touches into one.
+  for (const auto& e : edges) {
+    int64_t t = twin_of(e[0], e[1]);
+    if (t < 0) continue;
+    uint32_t ri = find(e[2]), rj = find(uint32_t(t));
+    if (ri == rj) continue;
+    uint32_t big = area[ri] >= area[rj] ? ri : rj, small = big == ri ? rj : ri;
+    uint32_t edge_tri = small == ri ? e[2] : uint32_t(t);
+    // (No normal test: a sliver's normal is noise; the distances decide.)
+    bool flat = true;
+    for (size_t k = 0; k < 3 && flat; ++k)
+      flat = std::fabs(planes[big].eval(at(tris[small][k]))) <= 8 * eps &&
+             std::fabs(planes[big].eval(at(tris[edge_tri][k]))) <= 8 * eps;
+    if (flat) parent[small] = big;
   }
-  thread_local std::vector<std::pair<double, uint32_t>> order;
-  for (size_t gi = 0; gi < used; ++gi) {
-    Group& g = groups[gi];
-    // A vertex on a face's plane belongs to the face even when the sliver
-    // triangle that holds it went to the neighbouring face's group.
-    for (size_t i = 0; i < verts.size(); ++i)
-      if (std::fabs(g.plane.eval(at(i))) <= 8 * eps &&
-          std::find(g.members.begin(), g.members.end(), uint32_t(i)) == g.members.end())
-        g.members.push_back(uint32_t(i));
-    V3 c(0, 0, 0);
-    for (uint32_t i : g.members) c = c + at(i) * (1.0 / double(g.members.size()));
-    V3 u = any_perpendicular(g.plane.n), v = cross(g.plane.n, u);
-    order.clear();
-    for (uint32_t i : g.members) order.push_back({std::atan2(dot(at(i) - c, v), dot(at(i) - c, u)), i});
-    std::sort(order.begin(), order.end());
-    for (const auto& o : order) indices.push_back(o.second);
-    sizes.push_back(uint32_t(order.size()));
+  // Each region's boundary: its directed edges whose twin lies in another region.
+  thread_local std::vector<std::array<uint32_t, 3>> boundary;  // (a, b, region)
+  boundary.clear();
+  for (const auto& e : edges) {
+    int64_t t = twin_of(e[0], e[1]);
+    uint32_t r = find(e[2]);
+    if (t < 0 || find(uint32_t(t)) != r) boundary.push_back({r, e[0], e[1]});
   }
+  std::sort(boundary.begin(), boundary.end());
+  size_t i = 0;
+  while (i < boundary.size()) {
+    size_t j = i;
+    while (j < boundary.size() && boundary[j][0] == boundary[i][0]) ++j;
+    // Walk the loop from the region's first edge: next edge starts where this one ends.
+    size_t count = j - i, start = indices.size();
+    uint32_t first = boundary[i][1], v = first;
+    bool ok = true;
+    for (size_t step = 0; step < count && ok; ++step) {
+      indices.push_back(v);
+      size_t k = i;
+      while (k < j && boundary[k][1] != v) ++k;
+      if (k == j) ok = false;
+      else v = boundary[k][2];
+      if (ok && v == first && step + 1 != count) ok = false;  // several loops: not a disk
+    }
+    if (!ok || v != first) {
+      // Not one simple loop (tolerance merged a ring): emit the region's triangles.
+      indices.resize(start);
+      for (size_t t = 0; t < nt; ++t)
+        if (find(uint32_t(t)) == boundary[i][0]) {
+          for (size_t k = 0; k < 3; ++k) indices.push_back(uint32_t(tris[t][k]));
+          sizes.push_back(3);
+        }
+    } else {
+      sizes.push_back(uint32_t(count));
+    }
+    i = j;
+  }
+  // A vertex inside a merged face (a hair off its plane) is no corner: drop
+  // the vertices no face uses, so the output is exactly the faces' corners.
+  thread_local std::vector<uint32_t> renumber;
+  renumber.assign(verts.size(), UINT32_MAX);
+  for (uint32_t v : indices) renumber[v] = 0;
+  size_t kept = 0;
+  for (size_t v = 0; v < verts.size(); ++v)
+    if (renumber[v] == 0) {
+      renumber[v] = uint32_t(kept);
+      for (int k = 0; k < 3; ++k) xyz[3 * kept + k] = xyz[3 * v + k];
+      ++kept;
+    }
+  xyz.resize(3 * kept);
+  for (uint32_t& v : indices) v = renumber[v];
 }
 
 bool hull_planes(PositionSpan points, std::vector<Plane>& out) {

@@ -67,6 +67,18 @@ void set_fallback(FocusResult& out, FocusFallback f, const char* reason) {
 
 double depth_of(const Frame& fr, V3 p) { return -mul_point(fr.view, p).z; }
 
+// The centre of the bounding box of pts: unlike the vertex centroid it does not
+// move when clipping leaves an extra vertex in the middle of an edge, so the
+// axes chosen from it are stable from frame to frame.
+V3 box_centre(const std::vector<V3>& pts) {
+  V3 lo(HUGE_VAL, HUGE_VAL, HUGE_VAL), hi(-HUGE_VAL, -HUGE_VAL, -HUGE_VAL);
+  for (V3 p : pts) {
+    lo = V3(std::fmin(lo.x, p.x), std::fmin(lo.y, p.y), std::fmin(lo.z, p.z));
+    hi = V3(std::fmax(hi.x, p.x), std::fmax(hi.y, p.y), std::fmax(hi.z, p.z));
+  }
+  return (lo + hi) * 0.5;
+}
+
 // F * C, with F mapping the image of `pts` under C onto the unit cube. False
 // when a point has w <= 0 or the result is not finite.
 bool fit(const M4& chain, const std::vector<V3>& pts, bool flip_depth, M4& out) {
@@ -187,13 +199,11 @@ bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& 
   // H and the light in post-perspective space.
   thread_local std::vector<V3> hp;
   hp.clear();
-  V3 c(0, 0, 0);
   for (V3 p : fr.h_verts) {
     V4 q = mul_point(post, p);
     hp.push_back(V3(q.x / q.w, q.y / q.w, q.z / q.w));
-    c = c + hp.back();
   }
-  c = c * (1.0 / double(hp.size()));
+  V3 c = box_centre(hp);
   double r = 0;
   for (V3 q : hp) r = std::fmax(r, length(q - c));
   V4 l = fr.directional ? mul(post, fr.towards_light.x, fr.towards_light.y, fr.towards_light.z, 0)
@@ -263,11 +273,8 @@ bool lispsm_warp(const std::vector<V3>& pts, V3 travel, V3 eye, V3 view, double 
 
 bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
   double r_min = HUGE_VAL;
-  V3 r_centre(0, 0, 0);
-  for (V3 p : fr.r_verts) {
-    r_min = std::fmin(r_min, depth_of(fr, p));
-    r_centre = r_centre + p * (1.0 / double(fr.r_verts.size()));
-  }
+  for (V3 p : fr.r_verts) r_min = std::fmin(r_min, depth_of(fr, p));
+  V3 r_centre = box_centre(fr.r_verts);
   double z_near = std::fmax(fr.cam_near, r_min);
   M4 warp;
   double n_used = 0;
@@ -286,7 +293,7 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
       q.push_back(V3(c.x / c.w, c.y / c.w, c.z / c.w));
     }
     // The view direction at the receivers' centre, and the local scale there.
-    double step = 1e-3 * std::fmax(fr.scale * 1e-6, length(fr.r_verts.front() - r_centre) + 1e-300);
+    double step = 1e-3 * std::fmax(fr.scale * 1e-6, length(fr.r_verts.front() - r_centre));
     V4 a = mul_point(u, r_centre), b = mul_point(u, r_centre + fr.view_dir * step);
     warped = false;
     if (a.w > 0 && b.w > 0) {
@@ -594,8 +601,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       // A point light's L: the half-space at light_near beyond it, facing the
       // receivers' centre. Receivers behind it cannot share one map.
       unique_vertices(fr.receivers, fr.eps, fr.r_verts);
-      V3 c(0, 0, 0);
-      for (V3 p : fr.r_verts) c = c + p * (1.0 / double(fr.r_verts.size()));
+      V3 c = box_centre(fr.r_verts);
       fr.light_axis = length(c - fr.light_pos) > fr.eps ? normalize(c - fr.light_pos) : fr.view_dir;
       Plane near_plane = plane_through(fr.light_pos + fr.light_axis * fr.light_near, fr.light_axis);
       for (V3 p : fr.r_verts)

@@ -25,7 +25,6 @@ namespace geombake {
 namespace {
 
 using Json = nlohmann::json;
-using OrderedJson = nlohmann::ordered_json;
 
 const char* kFocusHelp =
     "usage: geombake focus FRAME.json\n"
@@ -98,6 +97,10 @@ int run_focus(const std::vector<std::string>& argv) {
     if (!(fovy > 0 && fovy < 180)) throw BadFrame("camera.fovy_degrees: must lie in (0, 180)");
     if (!(aspect > 0)) throw BadFrame("camera.aspect: must be positive");
     if (!(near_d > 0 && far_d > near_d)) throw BadFrame("camera.near, camera.far: need 0 < near < far");
+    double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
+    double c[3] = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
+    if (f[0] == 0 && f[1] == 0 && f[2] == 0) throw BadFrame("camera.target: equals camera.eye");
+    if (c[0] == 0 && c[1] == 0 && c[2] == 0) throw BadFrame("camera.up: parallel to the view direction (or zero)");
 
     const Json& lj = member(frame, "frame", "light");
     geom::FocusLight light;
@@ -145,38 +148,43 @@ int run_focus(const std::vector<std::string>& argv) {
     if (!geom::compute_focus(camera, light, scene, options, r))
       throw BadFrame(std::string("invalid frame: ") + r.reason);
 
-    OrderedJson out;
-    out["method"] = geom::focus_method_name(r.method);
-    out["requested_method"] = geom::focus_method_name(options.method);
-    if (r.fallback == geom::FocusFallback::None)
-      out["fallback"] = nullptr;
-    else
-      out["fallback"] = r.reason;
-    out["fallback_kind"] = geom::focus_fallback_name(r.fallback);
-    out["light_kind"] = geom::light_kind_name(r.light_kind);
-    out["psm_light_kind"] = geom::light_kind_name(r.psm_light_kind);
-    out["needs_cube_map"] = r.needs_cube_map;
-    out["camera_shift"] = r.camera_shift;
-    out["psm_near"] = r.psm_near;
-    out["psm_far"] = r.psm_far;
-    out["lispsm_n"] = r.lispsm_n;
-    OrderedJson verts = OrderedJson::array();
+    // Compact output: one key per line, number arrays on one line.
+    auto num = [](double v) {
+      char buf[32];
+      if (!std::isfinite(v)) return std::string("null");
+      std::snprintf(buf, sizeof buf, "%.17g", v);
+      return std::string(buf);
+    };
+    auto str = [](const char* text) { return Json(text).dump(); };
+    std::string o = "{\n";
+    o += "  \"method\": " + str(geom::focus_method_name(r.method)) + ",\n";
+    o += "  \"requested_method\": " + str(geom::focus_method_name(options.method)) + ",\n";
+    o += "  \"fallback\": " + (r.fallback == geom::FocusFallback::None ? std::string("null") : str(r.reason)) + ",\n";
+    o += "  \"fallback_kind\": " + str(geom::focus_fallback_name(r.fallback)) + ",\n";
+    o += "  \"light_kind\": " + str(geom::light_kind_name(r.light_kind)) + ",\n";
+    o += "  \"psm_light_kind\": " + str(geom::light_kind_name(r.psm_light_kind)) + ",\n";
+    o += std::string("  \"needs_cube_map\": ") + (r.needs_cube_map ? "true" : "false") + ",\n";
+    o += "  \"camera_shift\": " + num(r.camera_shift) + ",\n";
+    o += "  \"psm_near\": " + num(r.psm_near) + ",\n";
+    o += "  \"psm_far\": " + num(r.psm_far) + ",\n";
+    o += "  \"lispsm_n\": " + num(r.lispsm_n) + ",\n";
+    o += "  \"focus_vertices\": [";
     for (size_t i = 0; i < r.vertex_count(); ++i)
-      verts.push_back({r.vertices[3 * i], r.vertices[3 * i + 1], r.vertices[3 * i + 2]});
-    out["focus_vertices"] = verts;
-    OrderedJson faces = OrderedJson::array();
+      o += std::string(i ? ",\n    [" : "\n    [") + num(r.vertices[3 * i]) + ", " + num(r.vertices[3 * i + 1]) + ", " +
+           num(r.vertices[3 * i + 2]) + "]";
+    o += r.vertex_count() ? "\n  ],\n" : "],\n";
+    o += "  \"focus_faces\": [";
     size_t base = 0;
-    for (uint32_t n : r.face_sizes) {
-      OrderedJson f = OrderedJson::array();
-      for (uint32_t i = 0; i < n; ++i) f.push_back(r.face_indices[base + i]);
-      faces.push_back(f);
-      base += n;
+    for (size_t f = 0; f < r.face_sizes.size(); ++f) {
+      o += f ? ", [" : "[";
+      for (uint32_t i = 0; i < r.face_sizes[f]; ++i) o += (i ? ", " : "") + std::to_string(r.face_indices[base + i]);
+      o += "]";
+      base += r.face_sizes[f];
     }
-    out["focus_faces"] = faces;
-    out["matrix"] = std::vector<double>(r.matrix, r.matrix + 16);
-    std::string text = out.dump(2);
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fputc('\n', stdout);
+    o += "],\n  \"matrix\": [";
+    for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(r.matrix[i]);
+    o += "]\n}\n";
+    std::fwrite(o.data(), 1, o.size(), stdout);
     return 0;
   } catch (const std::exception& e) {  // nlohmann parse errors and BadFrame
     std::fprintf(stderr, "Error: %s: %s\n", file.c_str(), e.what());

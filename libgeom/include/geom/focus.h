@@ -111,7 +111,8 @@ enum class FocusFallback : uint8_t {
   OrthographicCamera,  // the camera has no perspective: psm / lispsm equal uniform, uniform used
   LightInsideView,     // a point light lies among the receivers: one map covers only the half-space facing
                        // them; render cube faces (focus_cube_faces) for this light (needs_cube_map is set)
-  DegenerateScene,     // scene bounds of zero size (or inverted axes swapped): inflated to a minimal box
+  DegenerateScene,     // scene bounds of zero size on some axis: that axis is inflated to 1e-6 of the largest
+                       // extent or 1e-9 of the largest coordinate, whichever is more (min > max: swapped)
   EmptyFocus,          // H is empty (nothing visible is in the scene and the light): matrix covers S n L instead
   InvalidInput,        // non-finite or absurd input: identity matrix
 };
