@@ -1,9 +1,15 @@
-// Tests of the baked container (geom/baked_reader.h, geom/baked_writer.h).
+// Tests of the baked container (geom/baked_reader.h, geom/baked_writer.h), the
+// bake pipeline (geom/bake.h) and `geombake bake` / `geombake inspect`.
 //
-// Laws: what is written reads back as the same buffers; the reader refuses
-// every truncation and every single flipped byte of a real baked file, and
-// foreign files; the layout is a pure function of the sections; a failed write
-// leaves no file.
+// Laws: what is written reads back as the same buffers, each equal to what its
+// library stage makes; the reader refuses every truncation and every single
+// flipped byte of a real baked file, and foreign files, with a clear message;
+// bakes are byte-identical run after run and whatever the thread count; a
+// failed bake leaves no file, and the other inputs of the run still get baked.
+// clang-format off
+#include "geom/baked_reader.h"  // first, so that it is seen to compile alone
+// clang-format on
+
 #include <dirent.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -836,6 +842,16 @@ TEST(GeombakeCli, SeveralInputsOneFailing) {
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("all checksums verified"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("volume_sides"), std::string::npos) << ok.out;
+  // Two inputs with one output name: the second is refused, the first baked.
+  ASSERT_EQ(::mkdir((dir + "/sub").c_str(), 0755), 0);
+  write_text(dir + "/sub/a.obj", tetra_obj(1));
+  CliRun dup = geombake(dir, "bake '" + dir + "/a.obj' '" + dir + "/sub/a.obj' -o '" + dir + "/dup'");
+  EXPECT_EQ(dup.status, 1);
+  EXPECT_NE(dup.err.find("Error: " + dir + "/sub/a.obj: its output " + dir + "/dup/a.gbake is also the output of " +
+                         dir + "/a.obj"),
+            std::string::npos)
+      << dup.err;
+  EXPECT_EQ(list_dir(dir + "/dup"), std::vector<std::string>{"a.gbake"});
   // Bad arguments: exit 2.
   EXPECT_EQ(geombake(dir, "bake '" + dir + "/a.obj'").status, 2);  // no -o
   EXPECT_EQ(geombake(dir, "bake --frobnicate '" + dir + "/a.obj' -o x").status, 2);
@@ -968,4 +984,20 @@ TEST(BakeRealFile, SceneLightsOfTheDefaultScene) {
     EXPECT_NE(s.type, SectionType::Lights);
     EXPECT_NE(s.type, SectionType::LightSides);
   }
+}
+
+// The reader is one header an engine can take alone: it includes nothing but
+// the C++ standard library (and this file includes it first, so it compiles alone).
+TEST(BakedReaderHeader, StandardLibraryOnly) {
+  std::vector<unsigned char> text = read_bytes(std::string(GEOM_SOURCE_DIR) + "/libgeom/include/geom/baked_reader.h");
+  std::string src(text.begin(), text.end());
+  const std::vector<std::string> allowed = {"<cstddef>", "<cstdint>", "<cstdio>", "<cstring>", "<string>", "<vector>"};
+  size_t includes = 0;
+  for (size_t at = src.find("#include"); at != std::string::npos; at = src.find("#include", at + 1)) {
+    size_t end = src.find('\n', at);
+    std::string what = src.substr(at + 9, end - at - 9);
+    EXPECT_NE(std::find(allowed.begin(), allowed.end(), what), allowed.end()) << "includes " << what;
+    ++includes;
+  }
+  EXPECT_EQ(includes, allowed.size());
 }

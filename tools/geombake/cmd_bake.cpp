@@ -82,20 +82,37 @@ std::string make_escape(const std::string& path) {
   return o;
 }
 
-nlohmann::ordered_json section_json(const geom::BakedSection& s) {
+// What the report says of a written section; the bytes themselves are dropped
+// as soon as the file is written, so a run over many inputs holds one bake per thread.
+struct SectionInfo {
+  std::string name;
+  geom::baked::SectionType type;
+  geom::baked::Format format;
+  uint32_t stride, item;
+  uint64_t count, bytes;
+  uint32_t crc;
+};
+
+SectionInfo info_of(const geom::BakedSection& s) {
+  return {s.name, s.type,  s.format,       s.stride,
+          s.item, s.count, s.bytes.size(), geom::baked::crc32c(s.bytes.data(), s.bytes.size())};
+}
+
+nlohmann::ordered_json section_json(const SectionInfo& s) {
   return {{"name", s.name},
           {"type", geom::baked::type_name(s.type)},
           {"format", geom::baked::format_name(s.format)},
           {"item", s.item},
           {"stride", s.stride},
           {"count", s.count},
-          {"bytes", s.bytes.size()},
-          {"crc32c", geom::baked::crc32c(s.bytes.data(), s.bytes.size())}};
+          {"bytes", s.bytes},
+          {"crc32c", s.crc}};
 }
 
 struct Job {
   std::string input, output, error;  // error: why no output was planned, or the bake's error
-  geom::BakeResult result;
+  geom::BakeResult result;           // without its sections' bytes once written
+  std::vector<SectionInfo> sections;
   bool done = false;
 };
 
@@ -187,6 +204,8 @@ int run_bake(const std::vector<std::string>& argv) {
         job.result = geom::bake_file(job.input, job.output, options, import_options);
         job.done = job.result.ok;
         if (!job.result.ok) job.error = job.result.error;
+        for (const auto& sec : job.result.sections) job.sections.push_back(info_of(sec));
+        std::vector<geom::BakedSection>().swap(job.result.sections);
       }
       size_t n = ++finished;
       if (progress) {
@@ -222,9 +241,9 @@ int run_bake(const std::vector<std::string>& argv) {
       } else {
         uint64_t total = 0;
         j["sections"] = nlohmann::ordered_json::array();
-        for (const auto& s : job.result.sections) {
+        for (const auto& s : job.sections) {
           j["sections"].push_back(section_json(s));
-          total += s.bytes.size();
+          total += s.bytes;
         }
         j["section_bytes"] = total;
         j["topology"] = nlohmann::ordered_json::parse(geom::report_json(job.result.report));
@@ -233,12 +252,13 @@ int run_bake(const std::vector<std::string>& argv) {
       std::printf("%s\n", j.dump().c_str());
     } else if (args.has("-v") && job.done) {
       uint64_t total = 0;
-      for (const auto& s : job.result.sections) total += s.bytes.size();
+      for (const auto& s : job.sections) total += s.bytes;
       std::printf("%s -> %s: %zu sections, %llu bytes of buffers\n", job.input.c_str(), job.output.c_str(),
-                  job.result.sections.size(), (unsigned long long)total);
-      for (const auto& s : job.result.sections)
-        std::printf("  %-13s %-4u %-7s %10llu x %-3u = %12zu bytes\n", s.name.c_str(), s.item,
-                    geom::baked::format_name(s.format), (unsigned long long)s.count, s.stride, s.bytes.size());
+                  job.sections.size(), (unsigned long long)total);
+      for (const auto& s : job.sections)
+        std::printf("  %-13s %-4u %-7s %10llu x %-3u = %12llu bytes\n", s.name.c_str(), s.item,
+                    geom::baked::format_name(s.format), (unsigned long long)s.count, s.stride,
+                    (unsigned long long)s.bytes);
       const geom::EsmStats& e = job.result.esm;
       const geom::ShadowVolumeStats& sv = job.result.volume;
       if (options.esm)
