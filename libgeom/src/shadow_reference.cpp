@@ -166,7 +166,7 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
       ray.org_x = float(o.x), ray.org_y = float(o.y), ray.org_z = float(o.z);
       ray.dir_x = float(dir.x), ray.dir_y = float(dir.y), ray.dir_z = float(dir.z);
       ray.tnear = 0;
-      ray.tfar = Lw != 0 ? 1.0f : std::numeric_limits<float>::infinity();
+      ray.tfar = Lw != 0 ? 1.0f - 1e-4f : std::numeric_limits<float>::infinity();  // the light itself is no blocker
       ray.mask = 0xffffffffu;
       rtcInitIntersectContext(&context);
       rtcOccluded1(scene.get(), &context, &ray);

@@ -22,6 +22,9 @@
 //    another mask value (shadow, silhouette and terminator boundaries), and for
 //    pixels whose surface grazes the light (|cos| < 1e-4), where a one-pixel or
 //    rounding difference between a rasterizer and the ray caster is legitimate.
+//  - the segment to a point light stops short of the light by 1e-4 of its
+//    length: a light touching the geometry (at a vertex, on a face) is not
+//    blocked by the surface it lies on.
 // Triangles are given as indices into a position span. Errors (an index out of
 // range, a non-finite coordinate, an absurd image size, Embree failing) are
 // returned in `error`, never thrown.
