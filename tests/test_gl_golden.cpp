@@ -87,3 +87,30 @@ TEST(GlGolden, EveryTechniqueOnTheDefaultScene) {
 }
 
 }  // namespace
+
+namespace {
+
+// The techniques against the ray-cast reference on the default scene, under
+// its point light and its directional light (the sun): shadow volumes exact,
+// the 1024-texel maps within 0.2% of the certain pixels.
+TEST(GlGolden, DefaultSceneMasksAgreeWithTheReference) {
+  ASSERT_NE(context(), nullptr);
+  geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
+  ASSERT_TRUE(imported.ok) << imported.error;
+  std::string error;
+  auto state = viewer::create_state(imported.scene, GEOMVIEW_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  const viewer::View view = viewer::default_view(*state, 200, 150);
+  for (const Light& light : scene_lights(imported.scene))
+    for (viewer::Technique t : {viewer::Technique::Ssm, viewer::Technique::Pcf, viewer::Technique::Psm,
+                                viewer::Technique::Lispsm, viewer::Technique::Uniform, viewer::Technique::Edsm,
+                                viewer::Technique::Esm, viewer::Technique::Sv}) {
+      const Comparison c = render_and_compare(*state, imported.scene, view, light.setup, t, 1024);
+      SCOPED_TRACE(std::string(light.name) + " " + viewer::technique_name(t));
+      EXPECT_GT(c.shadowed, 100u);
+      if (t == viewer::Technique::Sv) EXPECT_EQ(c.wrong, 0u);
+      else EXPECT_LT(c.error(), 0.002) << c.wrong << " of " << c.certain;  // a few texel-staircase pixels
+    }
+}
+
+}  // namespace
