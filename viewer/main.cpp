@@ -34,7 +34,8 @@ const char* kUsage =
     "  --frames N                 render N frames and print the time of each pass\n"
     "  --inspect                  overlay silhouette quads, topology problems, focus body\n"
     "  --window                   open a window (default when no -o is given and a display exists)\n"
-    "  --shaders DIR              the shaders/ folder (default: " GEOMVIEW_SHADER_DIR ")\n"
+    "  --shaders DIR              the shaders/ folder (default: $GEOMVIEW_SHADERS, " GEOMVIEW_SHADER_DIR ",\n"
+    "                             then " GEOMVIEW_INSTALLED_SHADER_DIR ")\n"
     "Window keys: T technique, L light type, [ ] shadow-map size, I inspection, Esc quit; drag to orbit, scroll to zoom.\n";
 
 bool parse_floats(const std::string& text, float* out, int n) {
@@ -167,7 +168,10 @@ int main(int argc, char** argv) {
   if (!platform) return fail(error);
   if (!note.empty()) std::fprintf(stderr, "Warning: %s\n", note.c_str());
   const char* shader_dir = std::getenv("GEOMVIEW_SHADERS");
-  const std::string shaders = args.get("--shaders", shader_dir ? shader_dir : GEOMVIEW_SHADER_DIR);
+  // Shaders: --shaders, GEOMVIEW_SHADERS, the source tree's, or the installed ones.
+  std::string shaders = args.get("--shaders", shader_dir ? shader_dir : GEOMVIEW_SHADER_DIR);
+  if (!args.has("--shaders") && !shader_dir && !std::filesystem::exists(shaders + "/shade.frag"))
+    shaders = GEOMVIEW_INSTALLED_SHADER_DIR;
   viewer::StatePtr state =
       baked_bytes.empty() ? viewer::create_state(imported.scene, shaders, error)
                           : viewer::create_state_baked(baked_bytes.data(), baked_bytes.size(), shaders, imported.scene, error);
