@@ -89,10 +89,10 @@ std::vector<Light> random_lights(const Mesh& m, std::mt19937& rng) {
 
 TEST(EsmQuads, OpenExactlyForSilhouetteEdges) {
   std::mt19937 rng(2024);
-  for (Mesh m : {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(14, 8), fixtures::torus(14, 8),
-                 fixtures::sheet(6, 0.3), fixtures::open_box(), fixtures::book(5), fixtures::bowtie(),
-                 fixtures::flipped_box(), fixtures::degenerate_box(), fixtures::stack(),
-                 fixtures::sheet(5, 0.0, 7, 1e-7)}) {
+  for (Mesh m :
+       {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(14, 8), fixtures::torus(14, 8), fixtures::sheet(6, 0.3),
+        fixtures::open_box(), fixtures::book(5), fixtures::bowtie(), fixtures::flipped_box(),
+        fixtures::degenerate_box(), fixtures::stack(), fixtures::sheet(5, 0.0, 7, 1e-7), fixtures::sliver_box()}) {
     for (double shift : {0.0, 1e5}) {
       Mesh shifted = m;
       shifted.translate(shift, shift, -shift);
@@ -147,7 +147,8 @@ TEST(EsmQuads, OpenExactlyForSilhouetteEdges) {
               const float* bp = &b.esm.planes[4 * (q->plane_b & 0x7fffffffu)];
               const float* ap = &b.esm.planes[4 * (q->plane_a & 0x7fffffffu)];
               for (const float* pl : {ap, bp}) {  // bevel planes too
-                double s = double(pl[0]) * lf[0] + double(pl[1]) * lf[1] + double(pl[2]) * lf[2] + double(pl[3]) * lf[3];
+                double s =
+                    double(pl[0]) * lf[0] + double(pl[1]) * lf[1] + double(pl[2]) * lf[2] + double(pl[3]) * lf[3];
                 near_plane |= std::fabs(s) < eps * (l.w != 0 ? 1 : 1 / b.planes.diagonal);
               }
               open += geom::esm_corners(*q, b.esm.planes.data(), lf, mvp, 0.01f, c);

@@ -86,10 +86,10 @@ std::string silhouette_report(const SilhouetteBuffers& b) {
                 "shadow volume: %llu side records (%llu pair edges, %llu single), %llu caps, %llu one-sided / "
                 "%llu double-sided faces, %llu bytes (per-face frusta: %llu sides, %llu bytes)\n"
                 "  rule coplanar: %llu side records / %llu bytes saved\n",
-                (unsigned long long)v.sides, (unsigned long long)v.pair_edges,
-                (unsigned long long)v.single_records, (unsigned long long)v.caps,
-                (unsigned long long)v.one_sided_faces, (unsigned long long)v.double_sided_faces,
-                (unsigned long long)v.bytes, (unsigned long long)v.naive_sides, (unsigned long long)v.naive_bytes,
+                (unsigned long long)v.sides, (unsigned long long)v.pair_edges, (unsigned long long)v.single_records,
+                (unsigned long long)v.caps, (unsigned long long)v.one_sided_faces,
+                (unsigned long long)v.double_sided_faces, (unsigned long long)v.bytes,
+                (unsigned long long)v.naive_sides, (unsigned long long)v.naive_bytes,
                 (unsigned long long)v.skipped_coplanar_records,
                 (unsigned long long)(v.skipped_coplanar_records * sizeof(SvSide)));
   s += line;
