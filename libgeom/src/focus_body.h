@@ -10,10 +10,21 @@
 #include <vector>
 
 #include "focus_math.h"
+#include "geom/focus.h"
 #include "geom/span.h"
 
 namespace geom {
 namespace focus {
+
+// Seconds spent in each stage of compute_focus, accumulated (for the benchmark).
+struct StageTimes {
+  double setup = 0;      // inputs checked, S and L as half-spaces
+  double receivers = 0;  // R = V n S n L: plane clips of the view frustum
+  double hull = 0;       // CGAL convex hull of R and the light
+  double clip = 0;       // the hull cut by S and L
+  double faces = 0;      // H's faces for the output: CGAL hull of H's vertices, coplanar merge
+  double matrix = 0;     // the light's kind, the shift, the matrix of the method
+};
 
 struct Polytope {
   std::vector<V3> pts;
@@ -57,7 +68,26 @@ bool hull_planes(PositionSpan points, std::vector<Plane>& out);
 // over S, so the extrusion leaves S). `clip` holds the half-spaces of S and L.
 // `hull_points` is working memory. Empty out when H is empty.
 void focus_hull(const Polytope& receivers, V3 light, bool directional, double reach, const Plane* clip,
-                size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch);
+                size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch,
+                StageTimes* times = nullptr);
+
+// H = conv(R u {l}) n K by half-spaces alone (K = S n L, given by `k_planes`,
+// inside the box with corners `box`): conv(R u {l}) is the intersection of
+// the planes of R (`r_planes`, all of them R's supporting planes or
+// redundant) that keep the light on their inner side, and of the planes
+// through the light (or along its direction) and R's silhouette edges. The
+// silhouette is the 2D convex hull, by CGAL (convex_hull_2), of R's vertices
+// projected from the light along `axis` (point: every vertex lies at least a
+// positive distance along it; directional: axis is the light direction).
+// False when the silhouette has no area (the caller falls back to focus_hull).
+bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
+                     size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
+                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times = nullptr);
+
+// compute_focus (geom/focus.h), with the time of each stage added to `times`
+// when it is not null.
+bool compute_focus_staged(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
+                          const FocusOptions& options, FocusResult& out, StageTimes* times);
 
 }  // namespace focus
 }  // namespace geom

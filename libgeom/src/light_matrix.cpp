@@ -24,6 +24,7 @@
 // the fit F that maps H's image onto the unit cube (z flipped for an inverted
 // point light, so the ordinary depth test is right for every light kind).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -52,7 +53,7 @@ struct Frame {
   V3 light_axis;      // point, spot: the light frustum's axis (unit)
   double light_near = 0;
   // bodies
-  std::vector<Plane> s_planes, l_planes, r_planes, hull_clip;
+  std::vector<Plane> s_planes, l_planes, r_planes, hull_clip, v_planes, hull_clip_planes;
   Polytope receivers, body, scratch;
   std::vector<V3> r_verts, h_verts, hull_points;
   double eps = 0, scale = 1;
@@ -556,6 +557,20 @@ const char* focus_fallback_name(FocusFallback f) {
 
 bool compute_focus(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
                    const FocusOptions& options, FocusResult& out) {
+  return compute_focus_staged(camera, light, scene, options, out, nullptr);
+}
+
+bool focus::compute_focus_staged(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
+                                 const FocusOptions& options, FocusResult& out, StageTimes* times) {
+  using Clock = std::chrono::steady_clock;
+  Clock::time_point mark = times ? Clock::now() : Clock::time_point();
+  // Adds the time since the last mark to `slot`.
+  auto lap = [&](double StageTimes::*slot) {
+    if (!times) return;
+    Clock::time_point now = Clock::now();
+    times->*slot += std::chrono::duration<double>(now - mark).count();
+    mark = now;
+  };
   M4 id = M4::identity();
   std::copy(id.m, id.m + 16, out.matrix);
   out.method = FocusMethod::Uniform;
@@ -585,6 +600,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       out.light_kind = fr.directional ? LightKind::Directional : LightKind::Point;
     }
     out.psm_light_kind = out.light_kind;
+    lap(&StageTimes::setup);
 
     // R = V n S n L (n receiver bounds).
     V3 corners[8];
@@ -616,6 +632,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       clip_polytope(fr.receivers, near_plane, fr.eps, fr.scratch);
     }
     unique_vertices(fr.receivers, fr.eps, fr.r_verts);
+    lap(&StageTimes::receivers);
     // H = conv(R u {l}) n S n L.
     if (!fr.receivers.empty()) {
       double reach = -HUGE_VAL;
@@ -628,11 +645,36 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       std::vector<Plane>& clip = fr.hull_clip;
       clip.assign(fr.s_planes.begin(), fr.s_planes.end());
       clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
-      focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach,
-                 clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch);
+      // R's candidate planes: V's faces and the receiver bounds.
+      fr.v_planes.clear();
+      V3 vc(0, 0, 0);
+      for (V3 c : corners) vc = vc + c * 0.125;
+      static const int face_corners[6][3] = {{0, 1, 2}, {4, 6, 5}, {0, 3, 7}, {1, 5, 6}, {0, 4, 5}, {3, 2, 6}};
+      for (const auto& f : face_corners) {
+        V3 n = cross(corners[f[1]] - corners[f[0]], corners[f[2]] - corners[f[0]]);
+        if (!(length(n) > 0)) continue;
+        Plane p = plane_through(corners[f[0]], normalize(n));
+        if (p.eval(vc) < 0) p = {-p.n, -p.d};
+        fr.v_planes.push_back(p);
+      }
+      fr.v_planes.insert(fr.v_planes.end(), fr.r_planes.begin(), fr.r_planes.end());
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) lo[k] = -fr.s_planes[2 * k].d, hi[k] = fr.s_planes[2 * k + 1].d;
+      V3 box[8];
+      for (int i = 0; i < 8; ++i) {
+        int b = (i & 3) == 1 || (i & 3) == 2 ? 1 : 0, t = (i & 3) >= 2 ? 1 : 0;  // frustum_polytope's corner order
+        box[i] = V3(b ? hi[0] : lo[0], t ? hi[1] : lo[1], i >= 4 ? lo[2] : hi[2]);
+      }
+      V3 axis = fr.directional ? fr.towards_light : fr.light_axis;
+      if (!focus_by_planes(fr.r_verts, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, axis,
+                           fr.v_planes.data(), fr.v_planes.size(), clip.data(), clip.size(), box, fr.eps,
+                           fr.hull_clip_planes, fr.body, fr.scratch, times))
+        focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach,
+                   clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
     } else {
       fr.body.clear();
     }
+    if (times) mark = Clock::now();  // focus_hull timed itself
     unique_vertices(fr.body, fr.eps, fr.h_verts);
     if (fr.h_verts.empty() || fr.r_verts.empty()) {
       // Nothing visible to shadow. A finite matrix over S n L (or S) all the same.
@@ -658,8 +700,12 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       fr.h_verts.clear();
       return true;
     }
-    index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
-    if (out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
+    if (options.faces) {
+      index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
+    } else {
+      for (V3 p : fr.h_verts) out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
+    }
+    if (options.faces && out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
       fr.h_verts.clear();
       for (size_t i = 0; i + 2 < out.vertices.size(); i += 3)
         fr.h_verts.push_back(V3(out.vertices[i], out.vertices[i + 1], out.vertices[i + 2]));
@@ -668,6 +714,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       for (int k = 0; k < 3; ++k) out.light_axis[k] = fr.light_axis[k];
       out.light_near = fr.light_near;
     }
+    lap(&StageTimes::faces);
 
     M4 m;
     bool done = false;
@@ -686,6 +733,7 @@ bool compute_focus(const FocusCamera& camera, const FocusLight& light, const Foc
       done = uniform_matrix(fr, m);
     }
     if (done) std::copy(m.m, m.m + 16, out.matrix);
+    lap(&StageTimes::matrix);
     return true;
   } catch (...) {  // allocation failure: never past the library boundary
     std::copy(id.m, id.m + 16, out.matrix);

@@ -50,11 +50,17 @@
 //     is always finite, whatever the input (non-finite or absurd input gives
 //     the identity and FocusFallback::InvalidInput).
 //
-// Cost: one small CGAL convex hull (exact predicates, inexact constructions)
-// and a few plane clips of a polytope of a few dozen vertices; about 20-40
-// microseconds per light on one core (bench/bench_focus.cpp). No allocation
-// when the same FocusResult is reused frame after frame (vectors keep their
-// capacity).
+// How H is computed (libgeom/src/focus_body.cpp): R by plane clips of V;
+// conv(R u {l}) as half-spaces (R's planes that keep the light inside, and
+// the planes through the light and R's silhouette, which CGAL's 2D convex
+// hull of R seen from the light gives); H by clipping S with those and L's.
+// H's faces come from a CGAL 3D convex hull of its vertices (exact
+// predicates), so they always close (V - E + F = 2).
+//
+// Cost (bench/bench_focus.cpp, median CPU time per light per frame on the
+// shared 2-core build machine): about 20-32 microseconds for the matrix with
+// FocusOptions::faces off, 130-215 with H's faces (the 3D hull is most of it).
+// Reusing the same FocusResult frame after frame keeps its vectors' capacity.
 //
 // No exception escapes these functions.
 #pragma once
@@ -127,6 +133,11 @@ struct FocusOptions {
   double lispsm_n_scale = 1.0;
   // Optional receiver bounds: only points inside receive shadows. Tightens R and H.
   const FocusBox* receivers = nullptr;
+  // H's faces (FocusResult::face_sizes / face_indices) for a wireframe: a
+  // second CGAL hull, about half the cost. An engine that needs only the
+  // matrix turns it off; vertices then are H's corners plus, at times, points
+  // in the middle of its edges.
+  bool faces = true;
   // Optional shadow casters: S becomes the convex hull of these points
   // intersected with the scene box (the box alone when empty).
   PositionSpan casters;
