@@ -861,7 +861,7 @@ bool volume_pass(State& s, const View& view, const glm::dmat4& view_proj, const 
 
 // The focused light matrix of psm / lispsm / uniform (geom/focus.h), and H.
 geom::FocusResult focus(const State& s, const View& view, float aspect, const LightSetup& light,
-                        geom::FocusMethod method) {
+                        geom::FocusMethod method, bool faces = false) {
   const double eye[3] = {view.eye.x, view.eye.y, view.eye.z}, target[3] = {view.target.x, view.target.y, view.target.z},
                up[3] = {view.up.x, view.up.y, view.up.z};
   const geom::FocusCamera camera =
@@ -880,6 +880,7 @@ geom::FocusResult focus(const State& s, const View& view, float aspect, const Li
   for (int k = 0; k < 3; ++k) box.min[k] = s.scene_lo[k], box.max[k] = s.scene_hi[k];
   geom::FocusOptions options;
   options.method = method;
+  options.faces = faces;  // H's faces only for the inspection wireframe
   geom::FocusResult result;
   geom::compute_focus(camera, l, box, options, result);
   return result;
@@ -929,7 +930,7 @@ bool inspection_pass(State& s, const View& view, const glm::dmat4& view_proj, co
   }
   // The focus body H of the focused shadow map (geom/focus.h), as a wireframe
   // drawn over everything.
-  const geom::FocusResult f = focus(s, view, float(w) / float(h), light, method);
+  const geom::FocusResult f = focus(s, view, float(w) / float(h), light, method, true);
   std::vector<float> edges;
   size_t at = 0;
   for (uint32_t n : f.face_sizes) {
