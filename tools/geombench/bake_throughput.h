@@ -1,0 +1,30 @@
+// tools/geombench/bake_throughput.h: the toolkit's silhouette bake against the
+// peer libraries on the same triangles (MISSION.md part 9, issue 6 item 4):
+//   bake      geom::bake_silhouettes from the raw (seamed) triangles: weld,
+//             topology, face planes, ESM quads, generic shadow volume, adjacency
+//   meshopt   meshopt_generateAdjacencyIndexBuffer on the same raw triangles
+//             (it remaps by position itself): adjacency only
+//   openmesh  an OpenMesh TriMesh (half-edges) built from the welded triangles
+//             (the weld not timed: OpenMesh needs shared vertices)
+// on the rippled UV sphere of scenes.h. Time: the best of `repetitions` runs,
+// one core. Peak memory: each operation once in a forked child, the rise of
+// the child's peak resident set (VmHWM, reset through /proc/self/clear_refs)
+// above its resident set once the input is built; 0 where Linux refuses.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace geombench {
+
+struct BakeRow {
+  std::string method;  // "bake", "meshopt", "openmesh"
+  uint64_t triangles = 0;
+  double seconds = 0;
+  double triangles_per_second = 0;
+  double peak_bytes = 0;  // extra peak memory of one run
+};
+
+std::vector<BakeRow> bake_throughput(const std::vector<int>& sphere_n, int repetitions);
+
+}  // namespace geombench
