@@ -165,7 +165,11 @@ std::string config_name(const std::string& t, int size) { return size ? t + "@" 
 
 std::vector<std::string> budget_summary(const std::vector<Row>& rows) {
   std::vector<std::string> lines;
-  const std::vector<Config> cs = configs(rows);
+  // Only configurations measured on every scene (cube needs a point light) compete.
+  std::vector<Config> cs = configs(rows);
+  int most = 0;
+  for (const Config& c : cs) most = std::max(most, c.scenes);
+  cs.erase(std::remove_if(cs.begin(), cs.end(), [&](const Config& c) { return c.scenes < most; }), cs.end());
   std::string last;
   for (double budget : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0}) {
     const Config* best = nullptr;
