@@ -9,7 +9,8 @@
 // on the rippled UV sphere of scenes.h. Time: the best of `repetitions` runs,
 // one core. Peak memory: each operation once in a forked child, the rise of
 // the child's peak resident set (VmHWM, reset through /proc/self/clear_refs)
-// above its resident set once the input is built; 0 where Linux refuses.
+// above its resident set once the input is built and freed heap memory is
+// handed back (malloc_trim); 0 where Linux refuses.
 #pragma once
 #include <cstdint>
 #include <string>
