@@ -705,6 +705,11 @@ void decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& prim,
   if (!att) refuse(what + ": the Draco data has no attribute with id " + std::to_string(ref.position_id) + " (POSITION)");
   if (att->num_components() != 3)
     refuse(what + ": the Draco POSITION attribute has " + std::to_string(att->num_components()) + " components");
+  // Numbers only: reading a DT_BOOL attribute converts bytes other than 0 and 1
+  // through a bool, which is undefined behaviour (found by fuzz/fuzz_draco).
+  if (att->data_type() < draco::DT_INT8 || att->data_type() > draco::DT_FLOAT64)
+    refuse(what + ": the Draco POSITION attribute has data type " + std::to_string(int(att->data_type())) +
+           ", not a number type");
   // A quantized (integer) position accessor describes the decoded values: apply
   // its normalisation when Draco's attribute does not say so itself.
   double scale = 1.0;
