@@ -36,8 +36,8 @@ std::string make_obj(bool corners) {
     }
   for_each_triangle([&](int a, int b, int c) {
     if (corners)
-      s.append(buf, size_t(std::snprintf(buf, sizeof buf, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", a + 1, a + 1, a + 1,
-                                         b + 1, b + 1, b + 1, c + 1, c + 1, c + 1)));
+      s.append(buf, size_t(std::snprintf(buf, sizeof buf, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", a + 1, a + 1, a + 1, b + 1,
+                                         b + 1, b + 1, c + 1, c + 1, c + 1)));
     else
       s.append(buf, size_t(std::snprintf(buf, sizeof buf, "f %d %d %d\n", a + 1, b + 1, c + 1)));
   });
@@ -56,16 +56,18 @@ std::string make_off() {
 }
 
 std::string make_ply(bool binary) {
-  std::string s = std::string("ply\nformat ") + (binary ? "binary_little_endian" : "ascii") +
-                  " 1.0\nelement vertex " + std::to_string(kW * kH) +
+  std::string s = std::string("ply\nformat ") + (binary ? "binary_little_endian" : "ascii") + " 1.0\nelement vertex " +
+                  std::to_string(kW * kH) +
                   "\nproperty float x\nproperty float y\nproperty float z\nelement face 800000\n"
                   "property list uchar int vertex_indices\nend_header\n";
   char buf[128];
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       float p[3] = {x * 0.01f, y * 0.01f, height(x, y)};
-      if (binary) s.append(reinterpret_cast<const char*>(p), 12);
-      else s.append(buf, size_t(std::snprintf(buf, sizeof buf, "%.6f %.6f %.6f\n", p[0], p[1], p[2])));
+      if (binary)
+        s.append(reinterpret_cast<const char*>(p), 12);
+      else
+        s.append(buf, size_t(std::snprintf(buf, sizeof buf, "%.6f %.6f %.6f\n", p[0], p[1], p[2])));
     }
   for_each_triangle([&](int a, int b, int c) {
     if (binary) {
@@ -122,13 +124,34 @@ void run(benchmark::State& state, const std::string& name, const std::string& by
   state.counters["MB"] = double(bytes.size()) / 1e6;
 }
 
-void BM_Obj(benchmark::State& s) { static const std::string b = make_obj(false); run(s, "grid.obj", b); }
-void BM_ObjCorners(benchmark::State& s) { static const std::string b = make_obj(true); run(s, "grid.obj", b); }
-void BM_Off(benchmark::State& s) { static const std::string b = make_off(); run(s, "grid.off", b); }
-void BM_PlyAscii(benchmark::State& s) { static const std::string b = make_ply(false); run(s, "grid.ply", b); }
-void BM_PlyBinary(benchmark::State& s) { static const std::string b = make_ply(true); run(s, "grid.ply", b); }
-void BM_StlAscii(benchmark::State& s) { static const std::string b = make_stl(false); run(s, "grid.stl", b); }
-void BM_StlBinary(benchmark::State& s) { static const std::string b = make_stl(true); run(s, "grid.stl", b); }
+void BM_Obj(benchmark::State& s) {
+  static const std::string b = make_obj(false);
+  run(s, "grid.obj", b);
+}
+void BM_ObjCorners(benchmark::State& s) {
+  static const std::string b = make_obj(true);
+  run(s, "grid.obj", b);
+}
+void BM_Off(benchmark::State& s) {
+  static const std::string b = make_off();
+  run(s, "grid.off", b);
+}
+void BM_PlyAscii(benchmark::State& s) {
+  static const std::string b = make_ply(false);
+  run(s, "grid.ply", b);
+}
+void BM_PlyBinary(benchmark::State& s) {
+  static const std::string b = make_ply(true);
+  run(s, "grid.ply", b);
+}
+void BM_StlAscii(benchmark::State& s) {
+  static const std::string b = make_stl(false);
+  run(s, "grid.stl", b);
+}
+void BM_StlBinary(benchmark::State& s) {
+  static const std::string b = make_stl(true);
+  run(s, "grid.stl", b);
+}
 
 BENCHMARK(BM_Obj)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ObjCorners)->Unit(benchmark::kMillisecond);

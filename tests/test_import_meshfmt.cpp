@@ -4,7 +4,6 @@
 // and hostile input (assimp's invalid/ folder, Draco's edge cases, every
 // truncation and random byte damage) that must load or be refused cleanly.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,6 +29,7 @@ namespace {
 
 const std::string kAssimp = "/usr/share/assimp/models";
 const std::string kDraco = std::string(GEOM_SHARED_DATA) + "/draco";
+const std::string kOpenscad = "/usr/share/openscad";  // Debian's openscad-testing-data: broken STL files
 
 fs::path temp_dir() {
   static fs::path dir = [] {
@@ -83,8 +83,8 @@ void expect_clean(const ImportResult& r, const std::string& name) {
 // edges with a std::map over sorted vertex pairs; independent of geom::weld
 // and geom::build_topology.
 struct Brute {
-  uint64_t triangles = 0, vertices = 0, edges = 0, boundary = 0, manifold = 0, inconsistent = 0,
-           non_manifold = 0, collapsed = 0, max_faces = 0;
+  uint64_t triangles = 0, vertices = 0, edges = 0, boundary = 0, manifold = 0, inconsistent = 0, non_manifold = 0,
+           collapsed = 0, max_faces = 0;
 };
 
 Brute brute_force(const Scene& s) {
@@ -117,9 +117,12 @@ Brute brute_force(const Scene& s) {
   for (auto& [key, e] : edges) {
     uint64_t n = uint64_t(e.first + e.second);
     b.max_faces = std::max(b.max_faces, n);
-    if (n == 1) ++b.boundary;
-    else if (n == 2) (e.first == 1 ? b.manifold : b.inconsistent)++;
-    else ++b.non_manifold;
+    if (n == 1)
+      ++b.boundary;
+    else if (n == 2)
+      (e.first == 1 ? b.manifold : b.inconsistent)++;
+    else
+      ++b.non_manifold;
   }
   return b;
 }
@@ -162,9 +165,15 @@ TEST(ImportObj, QuadIsFannedFromItsFirstCorner) {
 
 TEST(ImportObj, CornerFormsAndNegativeIndicesGiveTheSameFaces) {
   const std::string vt = "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n";
-  const char* faces[] = {"f 1 2 3 4\n", "f 1/1 2/2 3/3 4/4\n", "f 1//1 2//1 3//1 4//1\n",
-                         "f 1/1/1 2/2/1 3/3/1 4/4/1\n", "f -4 -3 -2 -1\n", "f -4/-4/-1 -3/-3/-1 -2//-1 -1\n",
-                         "f\t1   2\t3 4   \n"};
+  const char* faces[] = {"f 1 2 3 4\n",
+                         "f 1/1 2/2 3/3 4/4\n",
+                         "f 1//1 2//1 3//1 4//1\n",
+                         "f 1/1/1 2/2/1 3/3/1 4/4/1\n",
+                         "f -4 -3 -2 -1\n",
+                         "f -4/-4/-1 -3/-3/-1 -2//-1 -1\n",
+                         "f\t1   2\t3 4   \n",
+                         "f 1 2 3 4 # a quad\n",
+                         "f 1 2 3 4#\n"};
   for (const char* f : faces) {
     ImportResult r = load_text("forms.obj", kSquareV + vt + f);
     ASSERT_TRUE(r.ok) << f << r.error;
@@ -180,8 +189,8 @@ TEST(ImportObj, CornerFormsAndNegativeIndicesGiveTheSameFaces) {
 //   f 1 2 3  (group 0, before any o/g)   o a / f 1 3 4 (group 1)
 //   g b      (no face: gets no number)   g c / f 2 3 4, f 1 2 4 (group 2)
 TEST(ImportObj, ObjectsAndGroupsNumberTheMeshes) {
-  ImportResult r = load_text("groups.obj", std::string(kSquareV) +
-                                               "f 1 2 3\no a\nf 1 3 4\ng b\ng c\nf 2 3 4\nf 1 2 4\n");
+  ImportResult r =
+      load_text("groups.obj", std::string(kSquareV) + "f 1 2 3\no a\nf 1 3 4\ng b\ng c\nf 2 3 4\nf 1 2 4\n");
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_EQ(r.scene.sources.size(), 4u);
   EXPECT_EQ(r.scene.sources[0].mesh, 0u);
@@ -207,10 +216,9 @@ TEST(ImportObj, LineEndingsContinuationAndMissingFinalNewline) {
     for (char c : lf) s += c == '\n' ? eol : std::string(1, c);
     return s;
   };
-  for (const std::string& text : {with_eol("\r\n"), with_eol("\r"), lf.substr(0, lf.size() - 1),
-                                  std::string(kSquareV) + "f 1 2 \\\n 3 4\n",
-                                  std::string(kSquareV) + "f 1 2 \\\r\n3 \\  \r\n 4",
-                                  "\xEF\xBB\xBF" + lf}) {
+  for (const std::string& text :
+       {with_eol("\r\n"), with_eol("\r"), lf.substr(0, lf.size() - 1), std::string(kSquareV) + "f 1 2 \\\n 3 4\n",
+        std::string(kSquareV) + "f 1 2 \\\r\n3 \\  \r\n 4", "\xEF\xBB\xBF" + lf}) {
     ImportResult r = load_text("eol.obj", text);
     ASSERT_TRUE(r.ok) << r.error;
     EXPECT_EQ(r.scene.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
@@ -224,14 +232,15 @@ TEST(ImportObj, LineEndingsContinuationAndMissingFinalNewline) {
 TEST(ImportObj, OutOfRangeIndexNamesTheLine) {
   // Line 12 uses vertex 40 of 8.
   std::string text = "# cube corners\n";
-  for (int i = 0; i < 8; ++i) text += "v " + std::to_string(i & 1) + " " + std::to_string(i >> 1 & 1) + " " +
-                                      std::to_string(i >> 2 & 1) + "\n";
+  for (int i = 0; i < 8; ++i)
+    text += "v " + std::to_string(i & 1) + " " + std::to_string(i >> 1 & 1) + " " + std::to_string(i >> 2 & 1) + "\n";
   text += "f 1 2 3\nf 1 3 4\nf 1 40 2\n";
   const std::string path = write_file("range.obj", text);
   ImportResult r = import_file(path);
   ASSERT_FALSE(r.ok);
   EXPECT_EQ(r.error, path + ": line 12: face index 40 out of range (8 vertices)");
-  for (const char* bad : {"f 1 2 0\n", "f 1 2 -9\n", "f 1 2 x\n", "f 1 2 3/x\n", "f 1 2 /3\n", "f 1 2 3/1/1/1\n", "v 1 2\n", "v 1 2 3.1+e2\n"}) {
+  for (const char* bad : {"f 1 2 0\n", "f 1 2 -9\n", "f 1 2 x\n", "f 1 2 3/x\n", "f 1 2 /3\n", "f 1 2 3/1/1/1\n",
+                          "v 1 2\n", "v 1 2 3.1+e2\n"}) {
     ImportResult b = load_text("bad.obj", std::string(kSquareV) + bad);
     EXPECT_FALSE(b.ok) << bad;
     EXPECT_NE(b.error.find("line 5: "), std::string::npos) << b.error;
@@ -280,14 +289,22 @@ void put(std::string& out, const std::string& type, double v, bool big) {
     n = sizeof x;
     std::memcpy(b, &x, n);
   };
-  if (type == "char") store(int8_t(v));
-  else if (type == "uchar") store(uint8_t(v));
-  else if (type == "short") store(int16_t(v));
-  else if (type == "ushort") store(uint16_t(v));
-  else if (type == "int") store(int32_t(v));
-  else if (type == "uint") store(uint32_t(v));
-  else if (type == "float") store(float(v));
-  else store(double(v));
+  if (type == "char")
+    store(int8_t(v));
+  else if (type == "uchar")
+    store(uint8_t(v));
+  else if (type == "short")
+    store(int16_t(v));
+  else if (type == "ushort")
+    store(uint16_t(v));
+  else if (type == "int")
+    store(int32_t(v));
+  else if (type == "uint")
+    store(uint32_t(v));
+  else if (type == "float")
+    store(float(v));
+  else
+    store(double(v));
   if (big) std::reverse(b, b + n);
   out.append(reinterpret_cast<const char*>(b), n);
 }
@@ -304,8 +321,10 @@ std::string tet_ply(const std::string& format, const std::string& xyz_type, cons
   h += "end_header\n";
   const bool ascii = format == "ascii", big = format == "binary_big_endian";
   auto val = [&](const std::string& type, double v) {
-    if (ascii) h += std::to_string(v) + " ";
-    else put(h, type, v, big);
+    if (ascii)
+      h += std::to_string(v) + " ";
+    else
+      put(h, type, v, big);
   };
   for (auto& p : kTet) {
     val(xyz_type, p[0]), val("uchar", 200), val(xyz_type, p[1]), val(xyz_type, p[2]);
@@ -343,9 +362,10 @@ TEST(ImportPly, EveryFormatAndScalarTypeGivesTheSameTetrahedron) {
 }
 
 TEST(ImportPly, AliasesVertexIndexAndCrOnlyHeader) {
-  std::string text = "ply\rformat ascii 1.0\relement vertex 4\rproperty float32 x\rproperty float32 y\r"
-                     "property float32 z\relement face 1\rproperty list uint8 int32 vertex_index\rend_header\r"
-                     "0 0 0\r1 0 0\r1 1 0\r0 1 0\r4 0 1 2 3\r";
+  std::string text =
+      "ply\rformat ascii 1.0\relement vertex 4\rproperty float32 x\rproperty float32 y\r"
+      "property float32 z\relement face 1\rproperty list uint8 int32 vertex_index\rend_header\r"
+      "0 0 0\r1 0 0\r1 1 0\r0 1 0\r4 0 1 2 3\r";
   ImportResult r = load_text("cr.ply", text);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.scene.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));  // quad fanned
@@ -371,13 +391,16 @@ TEST(ImportPly, HostileHeadersAreRefusedBeforeAllocating) {
   } cases[] = {
       {head + "element vertex 3000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
        "claims 3000000000 entries"},
-      {head + "element vertex 18446744073709551615\nproperty float x\nend_header\n", "element needs a name and a count"},
-      {head + "element vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
-              "property list uint int vertex_indices\nend_header\n" +
+      {head + "element vertex 18446744073709551615\nproperty float x\nend_header\n",
+       "element needs a name and a count"},
+      {head +
+           "element vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+           "property list uint int vertex_indices\nend_header\n" +
            std::string("\0\0\0\0\0\0\0\0\0\0\0\0\xff\xff\xff\x7f", 16),
        "claims 2147483647 items"},
-      {head + "element vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
-              "property list uchar int vertex_indices\nend_header\n" +
+      {head +
+           "element vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+           "property list uchar int vertex_indices\nend_header\n" +
            std::string("\0\0\0\0\0\0\0\0\0\0\0\0\x03\0\0\0\0\x28\0\0\0\0\0\0\0", 25),
        "face 0: vertex index 40 out of range (1 vertices)"},
       {"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement "
@@ -424,8 +447,7 @@ TEST(ImportPly, PointCloudLoadsWithAWarning) {
 //   | 3-----|-2
 //   |/      |/
 //   0-------1
-const char* kCubeCorners =
-    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n";
+const char* kCubeCorners = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n";
 const char* kCubeQuads = "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
 
 void expect_closed_cube(const ImportResult& r) {
@@ -572,6 +594,185 @@ TEST(ImportStl, BadFilesAreRefused) {
 }
 
 // ---------------------------------------------------------------------------
+// Random round trips: random polygon meshes (coordinates tiny, huge, far from
+// the origin, signed zeros, subnormals; corners repeated at random) written in
+// every format with random formatting choices; each import must give back
+// exactly the fan triangles of every polygon, bit for bit.
+
+std::string num(float f) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", double(f));
+  return buf;
+}
+
+struct RandomMesh {
+  std::vector<float> pos;
+  std::vector<std::vector<uint32_t>> polys;
+  std::vector<std::array<float, 9>> fan() const {
+    std::vector<std::array<float, 9>> t;
+    for (auto& p : polys)
+      for (size_t i = 1; i + 1 < p.size(); ++i) {
+        std::array<float, 9> a;
+        uint32_t c[3] = {p[0], p[i], p[i + 1]};
+        for (int k = 0; k < 3; ++k)
+          for (int j = 0; j < 3; ++j) a[3 * k + j] = pos[3 * c[k] + j];
+        t.push_back(a);
+      }
+    return t;
+  }
+};
+
+RandomMesh random_mesh(std::mt19937& rng) {
+  RandomMesh m;
+  const size_t nv = 1 + rng() % 40;
+  std::uniform_real_distribution<float> u(-1, 1);
+  const float scales[] = {1, 1e-30f, 1e6f, 3e38f, 1e-40f};
+  const float offsets[] = {0, 1e7f, -123456.78f};
+  for (size_t i = 0; i < 3 * nv; ++i) {
+    float v = u(rng) * scales[rng() % 5] + offsets[rng() % 3];
+    if (rng() % 20 == 0) v = -0.0f;
+    m.pos.push_back(v);
+  }
+  const size_t nf = rng() % 25;
+  for (size_t f = 0; f < nf; ++f) {
+    std::vector<uint32_t> p(3 + rng() % 6);
+    for (uint32_t& i : p) i = uint32_t(rng() % nv);
+    m.polys.push_back(p);
+  }
+  return m;
+}
+
+std::string random_eol(std::mt19937& rng) {
+  const char* e[] = {"\n", "\r\n", "\r"};
+  return e[rng() % 3];
+}
+
+std::string write_obj(const RandomMesh& m, std::mt19937& rng) {
+  const std::string eol = random_eol(rng);
+  std::string s = rng() % 2 ? "# random" + eol : "";
+  const size_t nv = m.pos.size() / 3;
+  for (size_t v = 0; v < nv; ++v) {
+    s += "v " + num(m.pos[3 * v]) + (rng() % 4 ? " " : "\t  ") + num(m.pos[3 * v + 1]) + " " + num(m.pos[3 * v + 2]);
+    s += (rng() % 5 ? "" : " 1") + eol;
+    if (rng() % 3 == 0) s += "vt 0.5 0.5" + eol + "vn 0 0 1" + eol;
+  }
+  for (auto& p : m.polys) {
+    if (rng() % 5 == 0) s += (rng() % 2 ? "g part" : "o thing") + eol;
+    s += "f";
+    for (size_t i = 0; i < p.size(); ++i) {
+      std::string idx = rng() % 3 ? std::to_string(p[i] + 1) : std::to_string(int64_t(p[i]) - int64_t(nv));
+      switch (rng() % 4) {
+        case 0:
+          s += " " + idx;
+          break;
+        case 1:
+          s += " " + idx + "/1";
+          break;
+        case 2:
+          s += " " + idx + "//1";
+          break;
+        default:
+          s += " " + idx + "/1/1";
+          break;
+      }
+      if (rng() % 10 == 0 && i + 1 < p.size()) s += " \\" + eol;
+    }
+    s += eol;
+  }
+  if (rng() % 2 && !s.empty()) s.resize(s.size() - eol.size());  // no final line end
+  return s;
+}
+
+std::string write_off(const RandomMesh& m, std::mt19937& rng) {
+  const std::string eol = random_eol(rng);
+  std::string s = std::string(rng() % 2 ? "OFF" : "COFF") + eol;
+  const bool colour = s[0] == 'C';
+  s += (rng() % 2 ? "# counts" + eol : "") + std::to_string(m.pos.size() / 3) + " " + std::to_string(m.polys.size()) +
+       " 0" + eol;
+  for (size_t v = 0; v < m.pos.size() / 3; ++v)
+    s += num(m.pos[3 * v]) + " " + num(m.pos[3 * v + 1]) + " " + num(m.pos[3 * v + 2]) +
+         (colour ? " 0.1 0.2 0.3 1" : "") + (rng() % 4 ? "" : " # c") + eol;
+  for (auto& p : m.polys) {
+    s += std::to_string(p.size());
+    for (uint32_t i : p) s += " " + std::to_string(i);
+    s += (rng() % 3 ? "" : " 255 0 0") + eol;
+  }
+  return s;
+}
+
+std::string write_ply(const RandomMesh& m, std::mt19937& rng) {
+  const char* formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
+  const std::string format = formats[rng() % 3];
+  const std::string xyz = rng() % 2 ? "float" : "double";
+  const std::string count = rng() % 2 ? "uchar" : "int", index = rng() % 2 ? "int" : "uint";
+  const bool ascii = format == "ascii", big = format == "binary_big_endian";
+  std::string s = "ply\nformat " + format + " 1.0\nelement vertex " + std::to_string(m.pos.size() / 3) + "\nproperty " +
+                  xyz + " x\nproperty " + xyz + " y\nproperty " + xyz + " z\nproperty uchar red\n" + "element face " +
+                  std::to_string(m.polys.size()) + "\nproperty list " + count + " " + index +
+                  " vertex_indices\nend_header\n";
+  for (size_t v = 0; v < m.pos.size() / 3; ++v) {
+    for (int k = 0; k < 3; ++k)
+      if (ascii)
+        s += num(m.pos[3 * v + k]) + " ";
+      else
+        put(s, xyz, m.pos[3 * v + k], big);
+    if (ascii)
+      s += "7\n";
+    else
+      put(s, "uchar", 7, big);
+  }
+  for (auto& p : m.polys) {
+    if (ascii)
+      s += std::to_string(p.size());
+    else
+      put(s, count, double(p.size()), big);
+    for (uint32_t i : p)
+      if (ascii)
+        s += " " + std::to_string(i);
+      else
+        put(s, index, i, big);
+    if (ascii) s += "\n";
+  }
+  return s;
+}
+
+std::string write_stl(const RandomMesh& m, std::mt19937& rng) {
+  auto tris = m.fan();
+  if (rng() % 2) return binary_stl(rng() % 2 ? "solid random" : "random", tris);
+  const std::string eol = random_eol(rng);
+  std::string s = "solid random" + eol;
+  for (auto& t : tris) {
+    s += "facet normal 0 0 0" + eol + "outer loop" + eol;
+    for (int k = 0; k < 3; ++k)
+      s += "vertex " + num(t[3 * k]) + " " + num(t[3 * k + 1]) + " " + num(t[3 * k + 2]) + eol;
+    s += "endloop" + eol + "endfacet" + eol;
+  }
+  return s + "endsolid random" + eol;
+}
+
+TEST(RoundTrip, RandomPolygonMeshesInEveryFormatGiveTheirFanTriangles) {
+  std::mt19937 rng(2024);
+  for (int trial = 0; trial < 300; ++trial) {
+    RandomMesh m = random_mesh(rng);
+    const auto expected = m.fan();
+    const std::pair<const char*, std::string> files[] = {{"r.obj", write_obj(m, rng)},
+                                                         {"r.off", write_off(m, rng)},
+                                                         {"r.ply", write_ply(m, rng)},
+                                                         {"r.stl", write_stl(m, rng)}};
+    for (auto& [name, text] : files) {
+      ImportResult r = import_memory(name, text.data(), text.size());
+      ASSERT_TRUE(r.ok) << name << " trial " << trial << ": " << r.error << "\n" << text.substr(0, 2000);
+      auto got = triangles_of(r.scene);
+      ASSERT_EQ(got.size(), expected.size()) << name << " trial " << trial;
+      for (size_t t = 0; t < got.size(); ++t)
+        for (int k = 0; k < 9; ++k)
+          ASSERT_EQ(std::memcmp(&got[t][k], &expected[t][k], 4), 0)
+              << name << " trial " << trial << " triangle " << t << ": " << got[t][k] << " vs " << expected[t][k];
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
 // Real files.
 
 const char* kWuson[] = {"OBJ/WusonOBJ.obj", "OFF/Wuson.off", "PLY/Wuson.ply", "STL/Wuson.stl"};
@@ -609,7 +810,7 @@ bool is_mesh_format(const fs::path& p) {
 
 std::vector<std::string> real_mesh_files() {
   std::vector<std::string> files;
-  for (const std::string& root : {kAssimp, kDraco}) {
+  for (const std::string& root : {kAssimp, kDraco, kOpenscad}) {
     if (!fs::exists(root)) continue;
     for (auto& e : fs::recursive_directory_iterator(root))
       if (e.is_regular_file() && is_mesh_format(e.path())) files.push_back(e.path().string());
@@ -637,17 +838,18 @@ TEST(RealFiles, ReportCountsEqualABruteForceCountOnEveryFileThatLoads) {
 TEST(RealFiles, InvalidAndEdgeCaseFilesLoadOrAreRefusedQuickly) {
   std::vector<std::string> files;
   for (auto& e : fs::directory_iterator(kAssimp + "/invalid")) files.push_back(e.path().string());
-  for (const char* name : {"inf_nan.obj", "deg_faces.obj", "degenerate_mesh.obj", "non_manifold_wrap.obj",
-                           "delim_test.ply", "float_inf_point_cloud.ply", "int_point_cloud.ply",
-                           "point_cloud_test_pos.obj", "point_cloud_test_pos.ply", "test_lines.obj",
-                           "extra_vertex.obj", "eof_test.obj", "empty_name.obj", "test_extra_whitespace.ply",
-                           "test_more_datatypes.ply", "test_wrong_attribute_mapping.obj",
-                           "triangle_with_degenerate_tex_coords.obj", "cube_att_partial.obj"})
+  for (const char* name :
+       {"inf_nan.obj", "deg_faces.obj", "degenerate_mesh.obj", "non_manifold_wrap.obj", "delim_test.ply",
+        "float_inf_point_cloud.ply", "int_point_cloud.ply", "point_cloud_test_pos.obj", "point_cloud_test_pos.ply",
+        "test_lines.obj", "extra_vertex.obj", "eof_test.obj", "empty_name.obj", "test_extra_whitespace.ply",
+        "test_more_datatypes.ply", "test_wrong_attribute_mapping.obj", "triangle_with_degenerate_tex_coords.obj",
+        "cube_att_partial.obj"})
     files.push_back(kDraco + "/" + name);
-  for (const char* rel : {"OBJ/box_UTF16BE.obj", "OBJ/number_formats.obj", "OBJ/testline.obj",
-                          "OBJ/testpoints.obj", "OBJ/point_cloud.obj", "PLY/points.ply",
-                          "STL/triangle_with_empty_solid.stl"})
+  for (const char* rel : {"OBJ/box_UTF16BE.obj", "OBJ/number_formats.obj", "OBJ/testline.obj", "OBJ/testpoints.obj",
+                          "OBJ/point_cloud.obj", "PLY/points.ply", "STL/triangle_with_empty_solid.stl"})
     files.push_back(kAssimp + "/" + rel);
+  if (fs::exists(kOpenscad + "/testdata/stl"))
+    for (auto& e : fs::directory_iterator(kOpenscad + "/testdata/stl")) files.push_back(e.path().string());
   for (const std::string& f : files) {
     auto t0 = std::chrono::steady_clock::now();
     ImportResult r = import_file(f);
@@ -670,6 +872,13 @@ TEST(RealFiles, InvalidAndEdgeCaseFilesLoadOrAreRefusedQuickly) {
   Report rep;
   analyze(wrap.scene, 0.0f, TopologyOptions(), false, rep);
   EXPECT_GE(rep.stats.max_edge_faces, 4u);
+  if (fs::exists(kOpenscad + "/testdata/stl")) {
+    ImportResult blah = import_file(kOpenscad + "/testdata/stl/invalidvertex.stl");
+    EXPECT_EQ(blah.error, kOpenscad + "/testdata/stl/invalidvertex.stl: line 89: bad vertex coordinate 'blah'");
+    ImportResult four = import_file(kOpenscad + "/testdata/stl/toomanyvertices.stl");  // one facet of 4 corners
+    ASSERT_TRUE(four.ok) << four.error;
+    EXPECT_EQ(four.scene.triangle_count(), 14u);
+  }
   ImportResult delim = import_file(kDraco + "/delim_test.ply");
   ASSERT_TRUE(delim.ok) << delim.error;
   EXPECT_GT(delim.scene.triangle_count(), 0u);
@@ -678,13 +887,20 @@ TEST(RealFiles, InvalidAndEdgeCaseFilesLoadOrAreRefusedQuickly) {
 // Every prefix of small files (a few hundred spread over bigger ones) loads or
 // is refused cleanly; so does random byte damage.
 TEST(RealFiles, TruncationsAndDamageLoadOrAreRefusedCleanly) {
-  const std::string files[] = {kAssimp + "/OBJ/box.obj",          kDraco + "/cube_att.obj",
-                               kDraco + "/octagon.obj",           kAssimp + "/PLY/cube.ply",
-                               kAssimp + "/PLY/cube_binary.ply",  kDraco + "/delim_test.ply",
-                               kDraco + "/test_more_datatypes.ply", kAssimp + "/OFF/Cube.off",
-                               kAssimp + "/STL/triangle.stl",     kAssimp + "/STL/Spider_binary.stl",
-                               kAssimp + "/OBJ/WusonOBJ.obj",     kAssimp + "/PLY/Wuson.ply",
-                               kAssimp + "/OFF/Wuson.off",        kAssimp + "/STL/Wuson.stl"};
+  const std::string files[] = {kAssimp + "/OBJ/box.obj",
+                               kDraco + "/cube_att.obj",
+                               kDraco + "/octagon.obj",
+                               kAssimp + "/PLY/cube.ply",
+                               kAssimp + "/PLY/cube_binary.ply",
+                               kDraco + "/delim_test.ply",
+                               kDraco + "/test_more_datatypes.ply",
+                               kAssimp + "/OFF/Cube.off",
+                               kAssimp + "/STL/triangle.stl",
+                               kAssimp + "/STL/Spider_binary.stl",
+                               kAssimp + "/OBJ/WusonOBJ.obj",
+                               kAssimp + "/PLY/Wuson.ply",
+                               kAssimp + "/OFF/Wuson.off",
+                               kAssimp + "/STL/Wuson.stl"};
   std::mt19937 rng(12345);
   for (const std::string& f : files) {
     std::vector<unsigned char> bytes = read_bytes(f);

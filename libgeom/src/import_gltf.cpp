@@ -16,7 +16,7 @@
 //               joins) dropped; lists are kept as written. Modes 0-3 (points,
 //               lines) are skipped with a warning naming file, mesh, primitive.
 //   positions   FLOAT, or (KHR_mesh_quantization) [UNSIGNED_]BYTE/SHORT,
-//               normalised (x/127 clamped to -1, x/255, x/32767, x/65535) or not;
+//               normalised (max(x/127, -1), x/255, max(x/32767, -1), x/65535) or not;
 //               any byteStride; sparse accessors applied here (tinygltf parses
 //               them but does not apply them); an accessor with no bufferView
 //               reads as zeros. Only vertices some triangle uses are emitted.
@@ -25,17 +25,35 @@
 //               buffers and accessors without bounds checks, dereferences a null
 //               attribute for an unknown Draco id and ignores decoding failures.
 //               The extension is removed from the JSON before tinygltf sees it.
-//   lights      KHR_lights_punctual: position = the node's world origin,
-//               direction = its world -Z (normalised), cone angles, range (0 =
-//               infinite), colour, intensity. Out-of-spec values are replaced by
-//               the defaults or clamped, with a warning.
+//   lights      KHR_lights_punctual (read here from the JSON: tinygltf refuses the
+//               whole file for one malformed light): position = the node's world
+//               origin, direction = its world -Z (normalised), cone angles, range
+//               (0 = infinite), colour, intensity. Only lights that nodes of the
+//               scene carry are emitted, once per such node. Out-of-spec values are
+//               replaced by the defaults or clamped, and a light with no known
+//               type or a dangling reference skipped, each with a warning.
+//   indices     UNSIGNED_BYTE/SHORT/INT; every value below the vertex count and
+//               not the primitive restart value (255, 65535, 2^32-1: section 3.7.2.1).
+//               Read here too: tinygltf refuses an indices accessor without a
+//               bufferView (valid glTF: zeros plus sparse values).
+//   buffers     data URIs (base64 or percent-encoded) are decoded here; external
+//               files are read by tinygltf after the checks below. A buffer with no data (no uri outside a GLB's first buffer, e.g. a
+//               placeholder an extension fills, or byteLength 0) is accepted, and
+//               a bufferView that uses it refused. Integers written as 1.0 are
+//               accepted, as the validator does.
+// Every mesh is decoded, also those no node uses, so a broken mesh refuses the
+// file; the output holds the scene's instances only.
 // Ignored: materials, textures, images (never loaded or decoded), animations,
 // skins, morph targets, cameras. They are removed from the JSON handed to
 // tinygltf, so their problems cannot refuse a file whose geometry is sound.
 //
 // Hostile input (all refused with a message, never a crash or a huge allocation):
-//   GLB framing is parsed here, strictly, before tinygltf (whose BIN chunk check
-//   can read 8 bytes past the end); JSON nesting deeper than kMaxJsonDepth (64)
+//   GLB framing is parsed here before tinygltf (whose BIN chunk check can read 8
+//   bytes past the end): a short header, wrong magic or version, a declared
+//   length past the end, a chunk past the end, a first chunk that is not JSON, a
+//   second JSON or BIN chunk, a BIN chunk not in second place are refused (an
+//   unaligned chunk length or bytes after the declared length: a warning); the
+//   GLB handed to tinygltf is rebuilt, well-formed, from the parts. JSON nesting deeper than kMaxJsonDepth (64)
 //   is refused (tinygltf converts extras recursively); every bufferView and
 //   accessor range (sparse parts included) is checked against the bytes the
 //   buffer really holds before anything is read; index values must be below the
@@ -103,7 +121,7 @@ Container split_container(const ImportInput& in, bool glb_extension, std::vector
   Container c;
   bool has_magic = in.size >= 4 && read_u32(in.data) == kGlbMagic;
   if (!has_magic && !glb_extension) {
-    c.json.assign(reinterpret_cast<const char*>(in.data), in.size);
+    if (in.size) c.json.assign(reinterpret_cast<const char*>(in.data), in.size);
     return c;
   }
   c.glb = true;
@@ -194,6 +212,7 @@ struct SideTable {
   std::map<PrimKey, DracoRef> draco;
   std::map<PrimKey, int> indices;  // primitive -> its indices accessor (absent: not indexed)
   std::vector<char> buffer_has_data;
+  std::map<size_t, std::vector<unsigned char>> data_uri;  // buffer -> bytes decoded here
 };
 
 bool extension_allowed(const std::string& e) {
@@ -234,6 +253,50 @@ std::string url_decode(const std::string& s) {
 std::string join_path(const std::string& dir, const std::string& file) {
   if (dir.empty()) return file;
   return dir.back() == '/' ? dir + file : dir + "/" + file;
+}
+
+// A buffer's data URI (RFC 2397): base64 or percent-encoded, media type
+// application/octet-stream or application/gltf-buffer (glTF 2.0 section 3.6.1.1).
+std::vector<unsigned char> decode_data_uri(const std::string& u, const std::string& name) {
+  const size_t comma = u.find(',');
+  if (comma == std::string::npos) refuse(name + ": data URI has no ','");
+  std::string header = u.substr(5, comma - 5);
+  const bool b64 = header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0;
+  if (b64) header.resize(header.size() - 7);
+  if (header != "application/octet-stream" && header != "application/gltf-buffer")
+    refuse(name + ": data URI media type is \"" + header.substr(0, 60) +
+           "\", not application/octet-stream or application/gltf-buffer");
+  std::vector<unsigned char> out;
+  if (!b64) {
+    std::string decoded = url_decode(u.substr(comma + 1));
+    out.assign(decoded.begin(), decoded.end());
+    return out;
+  }
+  static const std::array<int8_t, 256> table = [] {
+    std::array<int8_t, 256> t;
+    t.fill(-1);
+    const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (int i = 0; i < 64; ++i) t[static_cast<unsigned char>(k[i])] = int8_t(i);
+    return t;
+  }();
+  size_t end = u.size();
+  while (end > comma + 1 && u[end - 1] == '=' && u.size() - end < 2) --end;
+  const size_t n = end - comma - 1;
+  if (n % 4 == 1) refuse(name + ": data URI base64 length is impossible");
+  out.reserve(n / 4 * 3 + 2);
+  uint32_t acc = 0;
+  int bits = 0;
+  for (size_t i = comma + 1; i < end; ++i) {
+    const int v = table[static_cast<unsigned char>(u[i])];
+    if (v < 0) refuse(name + ": data URI has a character that is not base64 at offset " + str(i));
+    acc = (acc << 6) | uint32_t(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<unsigned char>(acc >> bits));
+    }
+  }
+  return out;
 }
 
 bool is_regular_file(const std::string& path, uint64_t* size) {
@@ -291,15 +354,13 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
       if (!uri->is_string()) refuse(name + ": uri is not a string");
       const std::string& u = uri->get_ref<const std::string&>();
       if (u.rfind("data:", 0) == 0) {
-        size_t comma = u.find(',');
-        std::string header = u.substr(0, comma == std::string::npos ? 0 : comma + 1);
-        if (header != "data:application/octet-stream;base64," && header != "data:application/gltf-buffer;base64,")
-          refuse(name + ": data URI is not base64 application/octet-stream or application/gltf-buffer");
-        size_t n = u.size() - header.size();
-        while (n > 0 && u[header.size() + n - 1] == '=') --n;
-        uint64_t decoded = uint64_t(n) * 3 / 4;
-        if (decoded != length)
-          refuse(name + ": its data URI holds " + str(decoded) + " bytes, but byteLength says " + str(length));
+        // Decoded here (tinygltf's base64 decoder looks each character up in a
+        // string, and the JSON handed to it then carries one byte instead).
+        std::vector<unsigned char> bytes = decode_data_uri(u, name);
+        if (bytes.size() != length)
+          refuse(name + ": its data URI holds " + str(bytes.size()) + " bytes, but byteLength says " + str(length));
+        side.data_uri[i] = std::move(bytes);
+        b = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
         continue;
       }
       std::string path = join_path(in.base_dir, url_decode(u));
@@ -1031,6 +1092,8 @@ void import(const ImportInput& in, Scene& out) {
   tinygltf::Model model;
   load_model(c, doc, in, max_bytes, model);
   doc = Json();
+  for (auto& [i, bytes] : side.data_uri)
+    if (i < model.buffers.size()) model.buffers[i].data = std::move(bytes);
 
   validate_ranges(model, side.buffer_has_data);
   std::vector<Instance> nodes = walk_scene(model);

@@ -8,7 +8,8 @@
 // `g` start a new TriangleSource::mesh: a counter numbered densely from 0 in
 // the order groups first receive a face (faces before any `o`/`g` are a group). `l`
 // and `p` (lines, points) are skipped with one warning giving their count.
-// Every other statement (vt, vn, usemtl, mtllib, s, comments...) is ignored.
+// Every other statement (vt, vn, usemtl, mtllib, s, comments...) is ignored;
+// `#` starts a comment, also after a statement.
 //
 // Text: LF, CRLF or CR-only line ends, a missing final newline, a UTF-8
 // byte-order mark, and `\` at the end of a line joining it with the next.
@@ -19,6 +20,7 @@
 // exporters write faces first): they, and index 0, are checked once the file
 // is read, and the error names the first line with a bad one.
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -97,6 +99,7 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
     const char* e = p + line.size();
     std::string_view key = next_token(p, e);
     if (key.empty() || key[0] == '#') continue;
+    if (const void* hash = std::memchr(p, '#', size_t(e - p))) e = static_cast<const char*>(hash);  // trailing comment
     if (key == "v") {
       float xyz[3];
       for (float& c : xyz) {
@@ -186,8 +189,7 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
     out.warnings.push_back(in.name + ": " + std::to_string(lines_points) +
                            " line and point statements (l, p) skipped; only faces are imported");
   if (short_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) +
-                           " faces with fewer than 3 corners skipped");
+    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) + " faces with fewer than 3 corners skipped");
   return true;
 }
 

@@ -144,8 +144,8 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error) {
   }
   const uint64_t left = uint64_t(t.end - t.p);
   if (nv > left / 6 + 1 || nf > left / 2 + 1 || nv * 6 + nf * 2 > left + 8) {
-    error = "header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
-            " faces, but only " + std::to_string(left) + " bytes follow";
+    error = "header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces, but only " +
+            std::to_string(left) + " bytes follow";
     return false;
   }
   if (out.vertex_count() + nv > 0xffffffffu) {
@@ -204,8 +204,8 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error) {
         return false;
       }
       if (idx >= nv) {
-        error = t.at() + "face " + std::to_string(f) + ": vertex index " + std::to_string(idx) +
-                " out of range (" + std::to_string(nv) + " vertices)";
+        error = t.at() + "face " + std::to_string(f) + ": vertex index " + std::to_string(idx) + " out of range (" +
+                std::to_string(nv) + " vertices)";
         return false;
       }
       poly.push_back(uint32_t(base + idx));
@@ -221,8 +221,7 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error) {
     }
   }
   if (short_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) +
-                           " faces with fewer than 3 vertices skipped");
+    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) + " faces with fewer than 3 vertices skipped");
   return true;
 }
 

@@ -44,9 +44,8 @@ bool parse_type(std::string_view s, PlyType& t) {
     const char* a;
     const char* b;
     PlyType t;
-  } names[] = {{"char", "int8", PlyType::I8},     {"uchar", "uint8", PlyType::U8},
-               {"short", "int16", PlyType::I16},  {"ushort", "uint16", PlyType::U16},
-               {"int", "int32", PlyType::I32},    {"uint", "uint32", PlyType::U32},
+  } names[] = {{"char", "int8", PlyType::I8},      {"uchar", "uint8", PlyType::U8},    {"short", "int16", PlyType::I16},
+               {"ushort", "uint16", PlyType::U16}, {"int", "int32", PlyType::I32},     {"uint", "uint32", PlyType::U32},
                {"float", "float32", PlyType::F32}, {"double", "float64", PlyType::F64}};
   for (const auto& n : names)
     if (s == n.a || s == n.b) {
@@ -63,9 +62,9 @@ size_t type_size(PlyType t) {
 
 struct Property {
   std::string name;
-  PlyType type = PlyType::F32;        // item type for lists
+  PlyType type = PlyType::F32;  // item type for lists
   bool list = false;
-  PlyType count_type = PlyType::U8;   // lists only
+  PlyType count_type = PlyType::U8;  // lists only
 };
 
 struct Element {
@@ -85,17 +84,14 @@ struct Body {
 
   bool read(PlyType t, double& v) {
     if (format == Format::Ascii) {
-      const char* c = reinterpret_cast<const char*>(p);
       const char* e = reinterpret_cast<const char*>(end);
-      std::string_view tok = next_word(c, e);
-      const char* q = tok.data();
-      if (tok.empty() || !scan_double(q, q + tok.size(), v)) return false;
+      const char* c = skip_white(reinterpret_cast<const char*>(p), e);
+      if (c >= e || !scan_double(c, e, v)) return false;
       p = reinterpret_cast<const unsigned char*>(c);
       // Integer types: a whole number within the type's range.
       static const double lo[] = {-128, 0, -32768, 0, -2147483648.0, 0};
       static const double hi[] = {127, 255, 32767, 65535, 2147483647.0, 4294967295.0};
-      if (t != PlyType::F32 && t != PlyType::F64 &&
-          !(v == std::floor(v) && v >= lo[size_t(t)] && v <= hi[size_t(t)]))
+      if (t != PlyType::F32 && t != PlyType::F64 && !(v == std::floor(v) && v >= lo[size_t(t)] && v <= hi[size_t(t)]))
         return false;
       return true;
     }
@@ -108,12 +104,24 @@ struct Body {
     uint64_t u = 0;
     for (size_t i = 0; i < n; ++i) u |= uint64_t(b[i]) << (8 * i);
     switch (t) {
-      case PlyType::I8: v = double(int8_t(uint8_t(u))); break;
-      case PlyType::U8: v = double(uint8_t(u)); break;
-      case PlyType::I16: v = double(int16_t(uint16_t(u))); break;
-      case PlyType::U16: v = double(uint16_t(u)); break;
-      case PlyType::I32: v = double(int32_t(uint32_t(u))); break;
-      case PlyType::U32: v = double(uint32_t(u)); break;
+      case PlyType::I8:
+        v = double(int8_t(uint8_t(u)));
+        break;
+      case PlyType::U8:
+        v = double(uint8_t(u));
+        break;
+      case PlyType::I16:
+        v = double(int16_t(uint16_t(u)));
+        break;
+      case PlyType::U16:
+        v = double(uint16_t(u));
+        break;
+      case PlyType::I32:
+        v = double(int32_t(uint32_t(u)));
+        break;
+      case PlyType::U32:
+        v = double(uint32_t(u));
+        break;
       case PlyType::F32: {
         uint32_t w = uint32_t(u);
         float f;
@@ -121,7 +129,9 @@ struct Body {
         v = f;
         break;
       }
-      case PlyType::F64: std::memcpy(&v, &u, 8); break;
+      case PlyType::F64:
+        std::memcpy(&v, &u, 8);
+        break;
     }
     return true;
   }
@@ -176,8 +186,10 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
     first = next_token(c, c + line.size());
   }
   if (first != "ply") {
-    if (looks_like_utf16(in.data, in.size)) error = "UTF-16 or UTF-32 text is not supported (save the PLY as ASCII)";
-    else error = in.size == 0 ? "empty file" : "not a PLY file (starts with " + quote_token(first) + ", not 'ply')";
+    if (looks_like_utf16(in.data, in.size))
+      error = "UTF-16 or UTF-32 text is not supported (save the PLY as ASCII)";
+    else
+      error = in.size == 0 ? "empty file" : "not a PLY file (starts with " + quote_token(first) + ", not 'ply')";
     return false;
   }
 
@@ -194,9 +206,12 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
     if (kw.empty() || kw == "comment" || kw == "obj_info") continue;
     if (kw == "format") {
       std::string_view f = next_token(c, e);
-      if (f == "ascii") format = Format::Ascii;
-      else if (f == "binary_little_endian") format = Format::LittleEndian;
-      else if (f == "binary_big_endian") format = Format::BigEndian;
+      if (f == "ascii")
+        format = Format::Ascii;
+      else if (f == "binary_little_endian")
+        format = Format::LittleEndian;
+      else if (f == "binary_big_endian")
+        format = Format::BigEndian;
       else {
         error = at + "unknown format " + quote_token(f);
         return false;
@@ -320,8 +335,7 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
       done_vertex = true;
     }
     if ((is_face || is_strips) && !(found & 8)) {
-      out.warnings.push_back(in.name + ": element '" + el.name +
-                             "' has no list property vertex_indices; skipped");
+      out.warnings.push_back(in.name + ": element '" + el.name + "' has no list property vertex_indices; skipped");
     }
     if (is_face && (found & 8)) {
       out.indices.reserve(out.indices.size() + 3 * std::min<uint64_t>(el.count, body.left() / 4));
@@ -377,9 +391,8 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
             continue;
           }
           if (!(v >= 0 && v < double(vertex_count) && v == std::floor(v))) {
-            error = where() + "vertex index " + show(v) +
-                    " out of range (" +
-                    std::to_string(vertex_count) + " vertices)";
+            error =
+                where() + "vertex index " + show(v) + " out of range (" + std::to_string(vertex_count) + " vertices)";
             return false;
           }
           poly.push_back(uint32_t(base + uint64_t(v)));
@@ -409,11 +422,9 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
       if (is_vertex) out.positions.insert(out.positions.end(), xyz, xyz + 3);
     }
   }
-  if (!done_face && !done_strips)
-    out.warnings.push_back(in.name + ": no face element: no triangles (a point cloud?)");
+  if (!done_face && !done_strips) out.warnings.push_back(in.name + ": no face element: no triangles (a point cloud?)");
   if (short_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) +
-                           " faces with fewer than 3 vertices skipped");
+    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) + " faces with fewer than 3 vertices skipped");
   return true;
 }
 

@@ -72,7 +72,7 @@ bool import_ascii(const ImportInput& in, Scene& out, std::string& error) {
   const size_t base = out.vertex_count();
   float facet[3 * 3];
   float extra[3];
-  size_t corners = 0;     // vertices seen in the current facet
+  size_t corners = 0;  // vertices seen in the current facet
   bool in_facet = false;
   uint64_t bad_facets = 0;
   for (;;) {
@@ -149,8 +149,7 @@ bool import_ascii(const ImportInput& in, Scene& out, std::string& error) {
     return false;
   }
   if (bad_facets)
-    out.warnings.push_back(in.name + ": " + std::to_string(bad_facets) +
-                           " facets with fewer than 3 vertices skipped");
+    out.warnings.push_back(in.name + ": " + std::to_string(bad_facets) + " facets with fewer than 3 vertices skipped");
   return true;
 }
 
@@ -166,8 +165,7 @@ bool begins_with_solid(const ImportInput& in) {
 bool import_stl(const ImportInput& in, Scene& out, std::string& error) {
   uint64_t n = 0;
   if (in.size >= 84)
-    n = uint64_t(in.data[80]) | uint64_t(in.data[81]) << 8 | uint64_t(in.data[82]) << 16 |
-        uint64_t(in.data[83]) << 24;
+    n = uint64_t(in.data[80]) | uint64_t(in.data[81]) << 8 | uint64_t(in.data[82]) << 16 | uint64_t(in.data[83]) << 24;
   if (in.size >= 84 && 84 + 50 * n == in.size) return import_binary(in, n, out, error);
   // ASCII STL is text: a NUL byte anywhere means binary.
   if (begins_with_solid(in) && !std::memchr(in.data, 0, in.size)) {
@@ -185,8 +183,9 @@ bool import_stl(const ImportInput& in, Scene& out, std::string& error) {
     return import_binary(in, n, out, error);
   }
   if (in.size < 84) {
-    error = in.size == 0 ? "empty file" : "too short for a binary STL (" + std::to_string(in.size) +
-                                              " bytes, the header alone is 84) and not ASCII STL";
+    error = in.size == 0 ? "empty file"
+                         : "too short for a binary STL (" + std::to_string(in.size) +
+                               " bytes, the header alone is 84) and not ASCII STL";
     return false;
   }
   return import_binary(in, n, out, error);
