@@ -78,6 +78,8 @@ mkdir -p "$corpus" "$artifacts"
 dict=()
 [ "$target" = gltf ] && dict=(-dict=fuzz/gltf.dict)
 log=$build/fuzz-$target.log
+marker=$build/.fuzz-$target.start
+touch "$marker"
 set +e
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 \
   -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$artifacts/" "${dict[@]}" "$@" "$corpus" "$seeds" \
@@ -86,9 +88,9 @@ status=$?
 set -e
 execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n1)
 rss=$(grep -o 'stat::peak_rss_mb: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n1)
-findings=$(find "$artifacts" -type f | wc -l)
+findings=$(find "$artifacts" -type f -newer "$marker" | wc -l)
 echo "fuzz_$target: ${execs:-?} executions in $seconds s, corpus $(ls "$corpus" | wc -l) files" \
-  "(+$(ls "$seeds" | wc -l) seeds), peak RSS ${rss:-?} MB, exit $status, $findings artifact(s) in $artifacts"
+  "(+$(ls "$seeds" | wc -l) seeds), peak RSS ${rss:-?} MB, exit $status, $findings new finding(s) in $artifacts"
 if [ "$status" -ne 0 ]; then
   grep -E 'ERROR|SUMMARY|contract broken|Test unit written|#0 |#1 |#2 |#3 ' "$log" | head -n 20 >&2
   echo "log: $log" >&2
