@@ -1,0 +1,98 @@
+// geom/bake.h: the bake pipeline, from an imported Scene to the sections of a
+// baked container (format: geom/baked_reader.h; writer: geom/baked_writer.h).
+//
+//   Scene -> weld (geom/weld.h) -> topology (geom/topology.h) -> face planes
+//   (geom/face_planes.h) -> ESM quads (geom/esm_quads.h), shadow volume
+//   (geom/shadow_volume.h), adjacency (geom/adjacency.h), one exact volume per
+//   static light -> sections
+//
+// Sections, in this order, each only when its option asks for it (a light
+// volume needs the generic volume, which is then built but not emitted):
+//   name          type              format  count            contents
+//   positions     Positions         F32x3   welded vertices  welded positions (input coordinates and units)
+//   indices       Indices           U32     3 x triangles    welded triangles, one per input triangle, in
+//                                                            input order (collapsed ones kept: they draw nothing)
+//   weld_remap    WeldRemap         U32     source vertices  Scene vertex -> welded vertex
+//   face_planes   FacePlanes        F32x4   triangles        (nx, ny, nz, d) in input coordinates, n.p + d = 0:
+//                                                            the face's stored plane (geom/face_planes.h, shared
+//                                                            by coplanar neighbours), (0,0,0,0) if degenerate
+//   topology      TopologyReport    Utf8    bytes            the JSON object of geom/report.h (`geombake info
+//                                                            --json`), without timings
+//   frame         Frame             F64x3   1                origin of the local frame of every buffer below:
+//                                                            local = input - origin (lights: geom/extrude.h
+//                                                            to_local_light)
+//   esm_quads     EsmQuads          Record  quads            EsmQuad, 36 B (geom/esm_quads.h)
+//   esm_planes    EsmPlanes         F32x4   planes           their plane table
+//   volume_sides  VolumeSides       Record  sides            SvSide, 32 B (geom/shadow_volume.h)
+//   volume_caps   VolumeCaps        Record  caps             SvCap, 40 B
+//   volume_planes VolumePlanes      F32x4   planes           their plane table
+//   adjacency     AdjacencyIndices  U32     6 x triangles    GL_TRIANGLES_ADJACENCY over `positions`
+//   lights        Lights            F64x4   lights           (x, y, z, w) input coordinates, w = 0: directional
+//                                                            towards (x, y, z); scene lights first, then --light
+//   light_sides   LightSides        Record  sides            per light, item = light index: its exact volume
+//   light_caps    LightCaps         Record  caps             (geom/shadow_volume.h build_light_volume)
+//   light_planes  LightPlanes       F32x4   planes
+//   silhouette    SilhouetteReport  Utf8    bytes            JSON: frame, what each rule saved (ESM and volume
+//                                                            stats), per light its name and record counts
+// `frame` comes with any buffer in the local frame (ESM, volume or a light),
+// `silhouette` with any silhouette buffer (those, or adjacency).
+//
+// Deterministic: the same scene and options give the same sections, byte for
+// byte, on any run and any thread count (no timestamps, pointers or timings).
+// Nothing throws: failures come back in BakeResult::error.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geom/baked_writer.h"
+#include "geom/esm_quads.h"
+#include "geom/face_planes.h"
+#include "geom/import.h"
+#include "geom/report.h"
+#include "geom/scene.h"
+#include "geom/shadow_volume.h"
+#include "geom/topology.h"
+
+namespace geom {
+
+struct BakeOptions {
+  float weld_tolerance = 0;  // 0: weld exactly equal positions (geom/weld.h)
+  TopologyOptions topology;
+  FacePlaneOptions planes;
+  EsmOptions esm_options;
+  ShadowVolumeOptions volume_options;  // generic and per-light volumes
+  bool positions = true;
+  bool indices = true;
+  bool weld_remap = true;
+  bool face_planes = true;
+  bool topology_report = true;
+  bool esm = true;           // ESM quads and their planes
+  bool volume = true;        // the generic shadow volume
+  bool adjacency = true;     // the adjacency index buffer
+  bool scene_lights = true;  // an exact volume per KHR_lights_punctual light of the scene
+  // More static lights, (x, y, z, w) in input coordinates (w = 1 point, w = 0
+  // directional towards xyz), after the scene's; each gets an exact volume.
+  std::vector<std::array<double, 4>> lights;
+};
+
+struct BakeResult {
+  bool ok = false;
+  std::string error;  // "FILE: what is wrong" when !ok
+  std::vector<BakedSection> sections;
+  Report report;             // the topology report (also the `topology` section's text)
+  std::string silhouette;    // the `silhouette` section's JSON text ("" when no silhouette buffer)
+  EsmStats esm;              // what the ESM rules saved (zero without ESM quads)
+  ShadowVolumeStats volume;  // what the volume rules saved (zero without the generic volume)
+};
+
+// Bakes an imported scene; `name` is the input's name as the report shows it.
+BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options = {});
+
+// Imports `input`, bakes it and writes the container to `output` atomically:
+// on any failure no output file is created (an existing one is left as it was).
+// `result.sections` holds what was written.
+BakeResult bake_file(const std::string& input, const std::string& output, const BakeOptions& options = {},
+                     const ImportOptions& import_options = {});
+
+}  // namespace geom

@@ -1,0 +1,174 @@
+// geom/shadow_volume.h: static, light-independent stencil shadow volumes that
+// stay correct for closed, open and non-manifold meshes.
+//
+// Seeds: 004_3832d04cb6bd7525.txt section 4 (extrusion to infinity with w = 0,
+// depth-pass / depth-fail, game levels that are not 2-manifolds), the z-fail
+// baseline of 001_0225cc27c0669b01.txt section 5. The vertex shader
+// (shaders/shadow_volume.vert) decides everything per light; the CPU reference
+// in geom/extrude.h does the same math.
+//
+// Why the counts are right. For a light L and a triangle f, let F(f) be f's
+// shadow frustum: the points P whose segment to L crosses f. Its boundary is a
+// closed surface: f itself (near cap), one side quad per edge of f extruded
+// away from L to infinity, and f projected to infinity (far cap). Oriented
+// outward, its winding number (signed crossing count of any ray from P to
+// infinity) is 1 inside F(f) and 0 outside. Every face contributes with a
+// weight, and the volume is the sum of these oriented closed surfaces:
+//   count(P) = sum over faces f of w(f) [P in F(f)],  w(f) in {0, 1}.
+// Since all weights are >= 0, count(P) > 0 only if some face blocks P from L.
+//   * Double-sided faces (the default, every face): w(f) = 1 for any light.
+//     F(f) is oriented by f's facing: f as is when L is in front of its plane,
+//     f flipped when behind. count(P) = the number of faces crossed by the
+//     segment PL: non-zero exactly when blocked, for any mesh and any light.
+//   * One-sided faces (ShadowVolumeOptions::one_sided_closed, only for faces of
+//     a closed component: every edge has exactly two non-degenerate faces
+//     traversing it in opposite directions): w(f) = 1 when L is in front, 0
+//     when behind. A segment from a light OUTSIDE the solid first enters it
+//     through a face whose front sees L, so count(P) > 0 exactly when the
+//     component blocks P: the classic volume, half the fill and memory. The
+//     caller promises the light never enters such a solid; a light inside one
+//     sees everything outside it lit (the classic failure), which is why this
+//     is not the default.
+// The side quads of neighbouring frusta along a shared edge coincide; they are
+// merged per edge. An edge's net multiplicity is the sum over its faces of
+// (+1 or -1: the face's orientation for this light times its direction along
+// the edge) times w(f); a merged record produces exactly that:
+//   pair record    two faces A (traversing p0 -> p1) and B (p1 -> p0) of a
+//                  manifold, consistent edge. One-sided: multiplicity 0 or 1,
+//                  the classic silhouette quad. Double-sided: 0 or 2, stored as
+//                  the record repeated twice (adjacent in `sides`). Never emitted when A and B share a
+//                  stored plane (both classified alike, the sum is always 0).
+//   single record  one face traversing p0 -> p1, side B = the same plane
+//                  flipped: always open (multiplicity 1), oriented by the face's
+//                  facing. Used for boundary edges, inconsistent edges and every
+//                  face of a non-manifold edge (never in a closed component).
+// Because every decision about a face comes from one stored plane and one
+// expression, the sides and the caps of one light always agree: the volume is a
+// closed oriented surface whatever the rounding, and a face classified wrongly
+// (the light within rounding of its plane) only changes the count inside its own
+// frustum, a sliver around that plane. Degenerate faces have no plane and no
+// frustum volume: they contribute nothing (geom/face_planes.h).
+//
+// Limits. A light exactly at a vertex gives that corner no extrusion
+// direction: the shaders send it to (0, 0, -1, 0) (kAtLight), so the volume is
+// that of the light moved an infinitesimal step along +z, closed and finite.
+// A light within float rounding of a face's interior (about 1e-7 of the
+// scene's size in the local frame) makes that face's frustum a half-space whose
+// side rounding decides: the volume stays closed and finite, but the count
+// behind that face may be wrong. Lights 1e-5 of the scene's size off the
+// surface and beyond are exact (tests/test_shadow_volume.cpp).
+//
+// Drawing. Depth-fail (z-fail, camera anywhere): sides and caps, back faces
+// increment on depth fail, front faces decrement. Depth-pass (camera outside
+// every volume): sides only, front faces increment on depth pass, back faces
+// decrement. A pixel is lit when its stencil count is 0. Use a projection with
+// an infinite far plane (or GL_DEPTH_CLAMP): extruded corners have w = 0.
+//
+// GPU layout. Positions and planes are in the local frame (geom/face_planes.h).
+// `planes`: vec4 per plane, bound as an RGBA32F texture buffer (uniform
+// samplerBuffer u_planes). Plane index: bits 0-30 index `planes`, bit 31 is a
+// flag (below). No index buffers; one instance per record, attribute divisor 1.
+//
+// Sides: glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, side_count), stride 32.
+//   location 0  vec3  p0       float x3, offset 0
+//   location 1  vec3  p1       float x3, offset 12
+//   location 3  uint  plane_a  uint32, offset 24: face A, traversing p0 -> p1
+//   location 4  uint  plane_b  uint32, offset 28: face B; bit 31 flips its test
+//   Per light: fa = front(A), fb = front(B) xor flip. fa == fb: the instance
+//   collapses to one point (no fragment). Otherwise (a, b) = fa ? (p1, p0) :
+//   (p0, p1) and the corners gl_VertexID 0..3 are a, b, a at infinity, b at
+//   infinity, where v at infinity = (v * L.w - L.xyz, 0).
+// Caps: glDrawArraysInstanced(GL_TRIANGLES, 0, 6, cap_count), stride 40.
+//   location 0  vec3  a        float x3, offset 0
+//   location 1  vec3  b        float x3, offset 12
+//   location 2  vec3  c        float x3, offset 24
+//   location 3  uint  plane    uint32, offset 36; bit 31 = double-sided face
+//   Vertices 0-2: the near cap (a, b, c) if front, (a, c, b) if behind and
+//   double-sided; 3-5: the far cap at infinity (a, c, b) if front, (a, b, c) if
+//   behind and double-sided. A one-sided face behind the light collapses.
+//   Sides and caps use one shader (uniform bool u_caps selects the record kind).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "geom/face_planes.h"
+#include "geom/span.h"
+#include "geom/topology.h"
+
+namespace geom {
+
+#pragma pack(push, 1)
+struct SvSide {
+  static constexpr uint32_t kFlip = 0x80000000u;
+  float p0[3];
+  float p1[3];
+  uint32_t plane_a;
+  uint32_t plane_b;
+};
+struct SvCap {
+  static constexpr uint32_t kDoubleSided = 0x80000000u;
+  float a[3];
+  float b[3];
+  float c[3];
+  uint32_t plane;
+};
+#pragma pack(pop)
+static_assert(sizeof(SvSide) == 32, "SvSide is the 32-byte GPU record");
+static_assert(sizeof(SvCap) == 40, "SvCap is the 40-byte GPU record");
+
+struct ShadowVolumeStats {
+  uint64_t edges = 0;              // all edges of the topology
+  uint64_t pair_edges = 0;         // manifold consistent edges given a pair record
+  uint64_t single_records = 0;     // boundary, inconsistent and non-manifold face records
+  uint64_t skipped_coplanar = 0;   // pair edges not emitted: shared stored plane
+  uint64_t one_sided_faces = 0;    // faces of closed components, with one_sided_closed
+  uint64_t double_sided_faces = 0; // all other non-degenerate faces
+  uint64_t degenerate_faces = 0;   // no plane, no cap
+  uint64_t sides = 0, caps = 0;    // records
+  uint64_t bytes = 0;              // sides * 32 + caps * 40 + planes * 16
+  uint64_t naive_sides = 0;        // one record per edge and face: every face's own frustum
+  uint64_t naive_bytes = 0;        // naive_sides * 32 + caps * 40 + planes * 16
+  uint64_t components = 0, closed_components = 0;
+  uint64_t light_one_sided = 0;    // per-light volume: closed components treated one-sided
+};
+
+struct ShadowVolume {
+  double origin[3] = {0, 0, 0};  // local frame (geom/face_planes.h)
+  std::vector<float> planes;     // vec4 per plane
+  std::vector<SvSide> sides;
+  std::vector<SvCap> caps;
+  ShadowVolumeStats stats;
+  // CPU-side, not uploaded: per record, its component (faces connected through
+  // shared edges); per component, whether it is closed. build_light_volume uses them.
+  std::vector<uint32_t> side_component, cap_component;
+  std::vector<uint8_t> component_closed;
+  // Set by build_light_volume: the light (local frame) this volume is exact for.
+  bool per_light = false;
+  float light[4] = {0, 0, 0, 0};
+};
+
+struct ShadowVolumeOptions {
+  bool one_sided_closed = false;  // classic one-sided closed components (lights outside them only)
+};
+
+// The generic, light-independent volume of a welded mesh.
+ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                                 const Topology& topology, const FacePlanes& planes,
+                                 const ShadowVolumeOptions& options = {});
+
+// The exact volume of one static light (local frame, w = 1 point, w = 0 direction
+// towards the light): only the side records that open for it, and only the
+// caps that draw. Closed components get the one-sided treatment, now safe
+// because the CPU knows where the light is: the light outside the solid
+// (parity of a ray cast from it in double, the solid's side from its signed
+// volume) counts front faces, inside it counts back faces; each pair record
+// then appears once instead of twice, and a cap only where it counts. A
+// component whose faces come within 1e-6 of its diagonal of the light, or
+// whose ray casts keep grazing an edge, stays double-sided. Same layout and
+// shader; the plane table is {L / |L|^2, -L / |L|^2} (index 0 always in
+// front, 1 always behind for that light), so the GPU reproduces the CPU's
+// decisions exactly. Returns an empty volume with per_light = false when the
+// light is all zeros.
+ShadowVolume build_light_volume(const ShadowVolume& generic, const float light[4]);
+
+}  // namespace geom

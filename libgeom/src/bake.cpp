@@ -1,0 +1,237 @@
+// The bake pipeline (geom/bake.h): Scene -> weld -> topology -> face planes ->
+// silhouette buffers -> sections. Each stage is the library's own (one
+// algorithm per file); this file only chooses, converts and lays out.
+#include "geom/bake.h"
+
+#include <cmath>
+#include <cstdio>
+#include <new>
+
+#include "geom/adjacency.h"
+#include "geom/extrude.h"
+#include "geom/halfedge.h"
+#include "geom/shadow_volume.h"
+#include "geom/silhouette.h"
+#include "geom/weld.h"
+
+namespace geom {
+namespace {
+
+using baked::Format;
+using baked::SectionType;
+
+std::string json_string(const std::string& s) {
+  std::string o = "\"";
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      o += '\\';
+      o += char(c);
+    } else if (c < 0x20) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\u%04x", c);
+      o += b;
+    } else {
+      o += char(c);
+    }
+  }
+  return o + "\"";
+}
+
+std::string json_number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+std::string json_uint(uint64_t v) { return std::to_string(v); }
+
+// Per triangle, its stored plane in input coordinates: d = d_local - n . origin.
+std::vector<float> world_face_planes(const FacePlanes& fp) {
+  std::vector<float> out(fp.face_plane.size() * 4, 0.0f);
+  for (size_t t = 0; t < fp.face_plane.size(); ++t) {
+    uint32_t i = fp.face_plane[t];
+    if (i == FacePlanes::kNone) continue;
+    const float* p = &fp.planes[4 * size_t(i)];
+    double d = double(p[3]) - (double(p[0]) * fp.origin[0] + double(p[1]) * fp.origin[1] + double(p[2]) * fp.origin[2]);
+    out[4 * t] = p[0];
+    out[4 * t + 1] = p[1];
+    out[4 * t + 2] = p[2];
+    out[4 * t + 3] = float(d);
+  }
+  return out;
+}
+
+template <class Record>
+BakedSection record_section(SectionType type, const char* name, const std::vector<Record>& records, uint32_t item = 0) {
+  return make_baked_section(type, Format::Record, uint32_t(sizeof(Record)), name, records, item);
+}
+
+std::string esm_json(const EsmStats& s) {
+  return "{\"edges\":" + json_uint(s.edges) + ",\"candidate_edges\":" + json_uint(s.candidate_edges) +
+         ",\"emitted_edges\":" + json_uint(s.emitted_edges) + ",\"skipped_coplanar\":" + json_uint(s.skipped_coplanar) +
+         ",\"skipped_concave\":" + json_uint(s.skipped_concave) + ",\"quads\":" + json_uint(s.quads) +
+         ",\"bevel_edges\":" + json_uint(s.bevel_edges) + ",\"bytes\":" + json_uint(s.bytes) +
+         ",\"naive_bytes\":" + json_uint(s.naive_bytes) + "}";
+}
+
+std::string volume_json(const ShadowVolumeStats& s) {
+  return "{\"edges\":" + json_uint(s.edges) + ",\"pair_edges\":" + json_uint(s.pair_edges) +
+         ",\"single_records\":" + json_uint(s.single_records) +
+         ",\"skipped_coplanar\":" + json_uint(s.skipped_coplanar) +
+         ",\"one_sided_faces\":" + json_uint(s.one_sided_faces) +
+         ",\"double_sided_faces\":" + json_uint(s.double_sided_faces) +
+         ",\"degenerate_faces\":" + json_uint(s.degenerate_faces) + ",\"sides\":" + json_uint(s.sides) +
+         ",\"caps\":" + json_uint(s.caps) + ",\"bytes\":" + json_uint(s.bytes) +
+         ",\"naive_sides\":" + json_uint(s.naive_sides) + ",\"naive_bytes\":" + json_uint(s.naive_bytes) + "}";
+}
+
+bool finite4(const double v[4]) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
+}
+
+}  // namespace
+
+BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
+  BakeResult r;
+  try {
+    // The static lights: the scene's, then the caller's.
+    std::vector<LightVolume> lights;
+    if (options.scene_lights) lights = scene_lights(scene);
+    for (size_t i = 0; i < options.lights.size(); ++i) {
+      LightVolume l;
+      for (int k = 0; k < 4; ++k) l.light[k] = options.lights[i][k];
+      l.name = "--light " + std::to_string(i + 1);
+      lights.push_back(l);
+    }
+    for (const LightVolume& l : lights)
+      if (!finite4(l.light) || (l.light[0] == 0 && l.light[1] == 0 && l.light[2] == 0 && l.light[3] == 0)) {
+        r.error = name + ": light '" + l.name + "' is not a usable (x, y, z, w): non-finite or all zero";
+        return r;
+      }
+
+    const size_t tc = scene.triangle_count();
+    WeldResult w = weld(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
+                        scene.indices.size(), options.weld_tolerance);
+    const PositionSpan welded = positions_of(w.positions.data(), w.vertex_count());
+    Topology topo = build_topology(welded, w.indices.data(), tc, options.topology);
+
+    // The report, field by field as geom/report.h's analyze() fills it.
+    r.report.file = name;
+    r.report.stats = topo.stats;
+    r.report.halfedge = summarize_halfedges(welded, w.indices.data(), tc);
+    r.report.lights = scene.lights.size();
+    r.report.source_counts = scene.source_counts;
+    r.report.warnings = scene.warnings;
+
+    const bool need_volume = options.volume || !lights.empty();
+    const bool silhouette = options.esm || options.volume || options.adjacency || !lights.empty();
+    FacePlanes fp;
+    if (options.face_planes || options.esm || need_volume)
+      fp = compute_face_planes(welded, w.indices.data(), tc, topo, options.planes);
+
+    auto& s = r.sections;
+    if (options.positions)
+      s.push_back(make_baked_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions));
+    if (options.indices) s.push_back(make_baked_section(SectionType::Indices, Format::U32, 4, "indices", w.indices));
+    if (options.weld_remap)
+      s.push_back(make_baked_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap));
+    if (options.face_planes)
+      s.push_back(make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes", world_face_planes(fp)));
+    if (options.topology_report) {
+      std::string json = report_json(r.report);
+      s.push_back(make_baked_section(SectionType::TopologyReport, Format::Utf8, 1, "topology",
+                                     std::vector<char>(json.begin(), json.end())));
+    }
+    if (!silhouette) {
+      r.ok = true;
+      return r;
+    }
+
+    std::string js = "{";
+    if (options.esm || need_volume) {  // the buffers in the local frame
+      std::vector<double> origin(fp.origin, fp.origin + 3);
+      s.push_back(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
+      js += "\"frame\":[" + json_number(origin[0]) + "," + json_number(origin[1]) + "," + json_number(origin[2]) + "],";
+    }
+    if (options.esm) {
+      EsmQuads esm = build_esm_quads(welded, w.indices.data(), tc, topo, fp, options.esm_options);
+      s.push_back(record_section(SectionType::EsmQuads, "esm_quads", esm.quads));
+      s.push_back(make_baked_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", esm.planes));
+      js += "\"esm\":" + esm_json(esm.stats) + ",";
+      r.esm = esm.stats;
+    }
+    ShadowVolume volume;
+    if (need_volume) volume = build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
+    if (options.volume) {
+      s.push_back(record_section(SectionType::VolumeSides, "volume_sides", volume.sides));
+      s.push_back(record_section(SectionType::VolumeCaps, "volume_caps", volume.caps));
+      s.push_back(make_baked_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", volume.planes));
+      js += "\"volume\":" + volume_json(volume.stats) + ",";
+      r.volume = volume.stats;
+    }
+    if (options.adjacency) {
+      std::vector<uint32_t> adj(adjacency_index_count(tc));
+      if (!build_adjacency(adj.data(), w.indices.data(), tc, w.vertex_count())) {
+        r = BakeResult();
+        r.error = name + ": out of memory building the adjacency indices";
+        return r;
+      }
+      s.push_back(make_baked_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", adj));
+      js += "\"adjacency\":{\"indices\":" + json_uint(adj.size()) + "},";
+    }
+    if (!lights.empty()) {
+      std::vector<double> table;
+      for (const LightVolume& l : lights) table.insert(table.end(), l.light, l.light + 4);
+      s.push_back(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table));
+    }
+    js += "\"lights\":[";
+    for (size_t i = 0; i < lights.size(); ++i) {
+      float local[4];
+      to_local_light(fp.origin, lights[i].light, local);
+      ShadowVolume lv = build_light_volume(volume, local);
+      const uint32_t item = uint32_t(i);
+      s.push_back(record_section(SectionType::LightSides, "light_sides", lv.sides, item));
+      s.push_back(record_section(SectionType::LightCaps, "light_caps", lv.caps, item));
+      s.push_back(make_baked_section(SectionType::LightPlanes, Format::F32x4, 16, "light_planes", lv.planes, item));
+      js += std::string(i ? "," : "") + "{\"name\":" + json_string(lights[i].name) + ",\"light\":[" +
+            json_number(lights[i].light[0]) + "," + json_number(lights[i].light[1]) + "," +
+            json_number(lights[i].light[2]) + "," + json_number(lights[i].light[3]) +
+            "],\"sides\":" + json_uint(lv.sides.size()) + ",\"caps\":" + json_uint(lv.caps.size()) +
+            ",\"bytes\":" + json_uint(lv.stats.bytes) + "}";
+    }
+    js += "]}";
+    r.silhouette = js;
+    s.push_back(make_baked_section(SectionType::SilhouetteReport, Format::Utf8, 1, "silhouette",
+                                   std::vector<char>(js.begin(), js.end())));
+  } catch (const std::bad_alloc&) {
+    r = BakeResult();
+    r.error = name + ": out of memory while baking";
+    return r;
+  } catch (const std::exception& e) {
+    r = BakeResult();
+    r.error = name + ": " + e.what();
+    return r;
+  }
+  r.ok = true;
+  return r;
+}
+
+BakeResult bake_file(const std::string& input, const std::string& output, const BakeOptions& options,
+                     const ImportOptions& import_options) {
+  ImportResult imported = import_file(input, import_options);
+  if (!imported.ok) {
+    BakeResult r;
+    r.error = imported.error;
+    return r;
+  }
+  BakeResult r = bake_scene(imported.scene, input, options);
+  if (!r.ok) return r;
+  std::string error;
+  if (!write_baked(output, r.sections, error)) {
+    r.ok = false;
+    r.error = input + ": cannot write " + output + ": " + error;
+  }
+  return r;
+}
+
+}  // namespace geom

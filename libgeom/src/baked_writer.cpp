@@ -1,0 +1,119 @@
+// The baked container's writer: the layout of geom/baked_reader.h's format.
+#include "geom/baked_writer.h"
+
+#include <cstring>
+#include <new>
+
+#include "geom/atomic_file.h"
+
+namespace geom {
+namespace {
+
+void store_u16(unsigned char* p, uint16_t v) {
+  p[0] = uint8_t(v);
+  p[1] = uint8_t(v >> 8);
+}
+void store_u32(unsigned char* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = uint8_t(v >> (8 * i));
+}
+void store_u64(unsigned char* p, uint64_t v) {
+  for (int i = 0; i < 8; ++i) p[i] = uint8_t(v >> (8 * i));
+}
+uint64_t align_up(uint64_t v, uint64_t a) { return (v + a - 1) & ~(a - 1); }
+
+bool host_is_little_endian() {
+  const uint32_t one = 1;
+  unsigned char b;
+  std::memcpy(&b, &one, 1);
+  return b == 1;
+}
+
+}  // namespace
+
+bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsigned char>& out, std::string& error,
+                     uint32_t alignment) {
+  using namespace baked;
+  out.clear();
+  if (!host_is_little_endian()) {
+    error = "the baked writer needs a little-endian host";
+    return false;
+  }
+  if (alignment < kMinAlignment || alignment > kMaxAlignment || (alignment & (alignment - 1))) {
+    error = "alignment " + std::to_string(alignment) + " is not a power of two in 16..4096";
+    return false;
+  }
+  if (sections.size() > kMaxSections) {
+    error = std::to_string(sections.size()) + " sections, over the limit of " + std::to_string(kMaxSections);
+    return false;
+  }
+  const uint64_t table_end = kHeaderSize + uint64_t(sections.size()) * kEntrySize;
+  std::vector<uint64_t> offsets(sections.size());
+  uint64_t end = table_end;
+  for (size_t i = 0; i < sections.size(); ++i) {
+    const BakedSection& s = sections[i];
+    std::string what = "section " + std::to_string(i) + " '" + s.name + "'";
+    if (s.name.size() >= kNameSize) {
+      error = what + ": name longer than " + std::to_string(kNameSize - 1) + " characters";
+      return false;
+    }
+    for (char c : s.name)
+      if (c < 0x20 || c > 0x7e) {
+        error = what + ": name has a non-printable character";
+        return false;
+      }
+    uint32_t want = format_stride(s.format);
+    if (!format_known(uint32_t(s.format)) || s.stride == 0 || (want && s.stride != want)) {
+      error = what + ": stride " + std::to_string(s.stride) + " does not fit format " + format_name(s.format);
+      return false;
+    }
+    if (s.count > UINT64_MAX / s.stride || s.count * s.stride != s.bytes.size()) {
+      error = what + ": " + std::to_string(s.bytes.size()) + " bytes are not count " + std::to_string(s.count) +
+              " x stride " + std::to_string(s.stride);
+      return false;
+    }
+    offsets[i] = align_up(end, alignment);
+    end = offsets[i] + s.bytes.size();
+  }
+  out.assign(size_t(end), 0);  // every padding byte zero
+  unsigned char* h = out.data();
+  std::memcpy(h, kMagic, 8);
+  store_u32(h + 8, kEndianTag);
+  store_u16(h + 12, kVersionMajor);
+  store_u16(h + 14, kVersionMinor);
+  store_u32(h + 16, kHeaderSize);
+  store_u32(h + 20, kEntrySize);
+  store_u32(h + 24, uint32_t(sections.size()));
+  store_u32(h + 28, alignment);
+  store_u64(h + 32, end);
+  for (size_t i = 0; i < sections.size(); ++i) {
+    const BakedSection& s = sections[i];
+    unsigned char* e = h + kHeaderSize + i * kEntrySize;
+    store_u32(e, uint32_t(s.type));
+    store_u32(e + 4, uint32_t(s.format));
+    store_u32(e + 8, s.stride);
+    store_u32(e + 12, s.item);
+    store_u64(e + 16, s.count);
+    store_u64(e + 24, offsets[i]);
+    store_u64(e + 32, s.bytes.size());
+    store_u32(e + 40, crc32c(s.bytes.data(), s.bytes.size()));
+    std::memcpy(e + 48, s.name.data(), s.name.size());
+    if (!s.bytes.empty()) std::memcpy(h + offsets[i], s.bytes.data(), s.bytes.size());
+  }
+  uint32_t crc = crc32c(h, kHeaderCrcOffset);
+  crc = crc32c(h + kHeaderSize, size_t(table_end - kHeaderSize), crc);
+  store_u32(h + kHeaderCrcOffset, crc);
+  return true;
+}
+
+bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error) {
+  std::vector<unsigned char> bytes;
+  try {
+    if (!serialize_baked(sections, bytes, error)) return false;
+  } catch (const std::bad_alloc&) {
+    error = "out of memory laying out the baked file";
+    return false;
+  }
+  return write_file_atomically(path, bytes.data(), bytes.size(), error);
+}
+
+}  // namespace geom

@@ -1,0 +1,160 @@
+// Extended-shadow-map silhouette quads (see geom/esm_quads.h). Seed
+// 000_4e3b0bad7883dc3e.txt, section 3.1 (which edges) and section 4.1 with
+// figures 3-5 (degenerate quad, extrusion vector, bevel plane).
+#include "geom/esm_quads.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace geom {
+namespace {
+
+struct V3 {
+  double x, y, z;
+};
+inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline double length(V3 a) { return std::sqrt(dot(a, a)); }
+inline V3 normalize(V3 a) {
+  const double l = length(a);
+  return l > 0 ? a * (1.0 / l) : V3{0, 0, 1};
+}
+
+inline int16_t snorm16(double v) { return int16_t(std::lround(std::max(-1.0, std::min(1.0, v)) * 32767.0)); }
+
+}  // namespace
+
+void octahedral_encode(const double v[3], int16_t out[2]) {
+  const double s = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  double x = s > 0 ? v[0] / s : 0, y = s > 0 ? v[1] / s : 0;
+  const double z = s > 0 ? v[2] / s : 1;
+  if (z < 0) {
+    const double ox = x, oy = y;
+    x = (1 - std::fabs(oy)) * (ox >= 0 ? 1 : -1);
+    y = (1 - std::fabs(ox)) * (oy >= 0 ? 1 : -1);
+  }
+  out[0] = snorm16(x);
+  out[1] = snorm16(y);
+}
+
+void octahedral_decode(const int16_t in[2], float v[3]) {
+  // As shaders/esm_quad.vert: snorm16 attribute, then the octahedral unfold.
+  float x = std::max(float(in[0]) / 32767.0f, -1.0f), y = std::max(float(in[1]) / 32767.0f, -1.0f);
+  float z = 1.0f - std::fabs(x) - std::fabs(y);
+  if (z < 0.0f) {
+    const float ox = x, oy = y;
+    x = (1.0f - std::fabs(oy)) * (ox >= 0.0f ? 1.0f : -1.0f);
+    y = (1.0f - std::fabs(ox)) * (oy >= 0.0f ? 1.0f : -1.0f);
+  }
+  const float l = std::sqrt(x * x + y * y + z * z);
+  v[0] = x / l;
+  v[1] = y / l;
+  v[2] = z / l;
+}
+
+EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                         const Topology& topology, const FacePlanes& fp, const EsmOptions& options) {
+  EsmQuads r;
+  EsmStats& st = r.stats;
+  for (int a = 0; a < 3; ++a) r.origin[a] = fp.origin[a];
+  st.edges = topology.edges.size();
+  std::vector<uint32_t> remap(fp.plane_count(), FacePlanes::kNone);
+  auto plane_of = [&](uint32_t face) {
+    const uint32_t p = fp.face_plane[face];
+    if (remap[p] == FacePlanes::kNone) {
+      remap[p] = uint32_t(r.planes.size() / 4);
+      r.planes.insert(r.planes.end(), fp.planes.begin() + 4 * size_t(p), fp.planes.begin() + 4 * size_t(p) + 4);
+    }
+    return remap[p];
+  };
+  auto pos = [&](uint32_t v) {
+    const Float3& p = positions[v];
+    return V3{double(p.x) - fp.origin[0], double(p.y) - fp.origin[1], double(p.z) - fp.origin[2]};
+  };
+  auto normal = [&](uint32_t f) { return V3{fp.normals[3 * f], fp.normals[3 * f + 1], fp.normals[3 * f + 2]}; };
+  auto emit = [&](V3 p0, V3 p1, uint32_t pa, uint32_t pb, V3 q) {
+    EsmQuad e;
+    e.p0[0] = float(p0.x), e.p0[1] = float(p0.y), e.p0[2] = float(p0.z);
+    e.p1[0] = float(p1.x), e.p1[1] = float(p1.y), e.p1[2] = float(p1.z);
+    e.plane_a = pa;
+    e.plane_b = pb;
+    const double qd[3] = {q.x, q.y, q.z};
+    octahedral_encode(qd, e.q);
+    r.quads.push_back(e);
+  };
+  const double bevel_dot = -std::cos(options.bevel_below_degrees * M_PI / 180.0);
+
+  std::vector<uint32_t> live;
+  for (const Edge& e : topology.edges) {
+    live.clear();
+    for (uint32_t i = 0; i < e.face_count; ++i) {
+      const uint32_t ef = topology.edge_faces[e.first + i];
+      if (fp.face_plane[ef >> 1] != FacePlanes::kNone) live.push_back(ef);
+    }
+    if (live.empty()) continue;
+    ++st.candidate_edges;
+    const V3 v0 = pos(e.v0), v1 = pos(e.v1);
+    const size_t before = r.quads.size();
+    if (live.size() == 2) {
+      // A pair: manifold (opposite directions) or inconsistent (B flipped).
+      const bool inconsistent = !((live[0] ^ live[1]) & 1u);
+      const uint32_t ea = inconsistent || !(live[0] & 1u) ? live[0] : live[1];
+      const uint32_t eb = ea == live[0] ? live[1] : live[0];
+      const uint32_t fa = ea >> 1, fb = eb >> 1;
+      if (!inconsistent && fp.face_plane[fa] == fp.face_plane[fb]) {
+        ++st.skipped_coplanar;
+        continue;
+      }
+      const V3 p0 = (ea & 1u) ? v1 : v0, p1 = (ea & 1u) ? v0 : v1;  // A traverses p0 -> p1
+      const V3 na = normal(fa), nb = normal(fb) * (inconsistent ? -1.0 : 1.0);
+      const uint32_t* w = indices + 3 * size_t(fb);
+      const uint32_t far = w[0] != e.v0 && w[0] != e.v1 ? w[0] : w[1] != e.v0 && w[1] != e.v1 ? w[1] : w[2];
+      const bool concave = dot(na, pos(far) - p0) > 0;
+      if (concave && !options.keep_concave) {
+        ++st.skipped_concave;
+        continue;
+      }
+      const uint32_t pa = plane_of(fa), pb = plane_of(fb) | (inconsistent ? EsmQuad::kFlip : 0u);
+      if (dot(na, nb) >= bevel_dot) {
+        emit(p0, p1, pa, pb, normalize(na + nb));
+      } else {
+        // Bevel plane: the normalized sum of the two planes, through the edge.
+        V3 s = na + nb;
+        const V3 nbev = length(s) > 1e-6 ? normalize(s) : normalize(cross(p1 - p0, na));
+        const V3 mid = (p0 + p1) * 0.5;
+        const uint32_t pbev = uint32_t(r.planes.size() / 4);
+        r.planes.insert(r.planes.end(),
+                        {float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid))});
+        emit(p0, p1, pa, pbev, normalize(na + nbev));
+        emit(p0, p1, pbev, pb, normalize(nbev + nb));
+        ++st.bevel_edges;
+      }
+    } else {
+      // Boundary or non-manifold: each face is a knife edge (its plane and the
+      // same plane flipped, 180 degrees apart), split against the bevel plane
+      // through the edge with normal u, in the face's plane pointing away
+      // from it: two quads, exactly one open for any light off the planes.
+      for (uint32_t ef : live) {
+        const uint32_t f = ef >> 1;
+        const V3 p0 = (ef & 1u) ? v1 : v0, p1 = (ef & 1u) ? v0 : v1;
+        const V3 n = normal(f), u = normalize(cross(p1 - p0, n));
+        const uint32_t pa = plane_of(f), pbev = uint32_t(r.planes.size() / 4);
+        const V3 mid = (p0 + p1) * 0.5;
+        r.planes.insert(r.planes.end(), {float(u.x), float(u.y), float(u.z), float(-dot(u, mid))});
+        emit(p0, p1, pa, pbev, normalize(n + u));
+        emit(p0, p1, pbev, pa | EsmQuad::kFlip, normalize(u - n));
+        ++st.bevel_edges;
+      }
+    }
+    if (r.quads.size() > before) ++st.emitted_edges;
+  }
+  st.quads = r.quads.size();
+  st.bytes = st.quads * sizeof(EsmQuad) + 16 * uint64_t(r.planes.size() / 4);
+  st.naive_bytes = 160 * st.candidate_edges;
+  return r;
+}
+
+}  // namespace geom

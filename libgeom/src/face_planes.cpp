@@ -1,0 +1,104 @@
+// Face planes and coplanar groups (see geom/face_planes.h for the contract).
+// Region growing over manifold edges, in triangle order, against the seed's
+// plane; everything in double, stored as float in the local frame.
+#include "geom/face_planes.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace geom {
+
+FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                               const Topology& topology, const FacePlaneOptions& options) {
+  FacePlanes r;
+  r.face_plane.assign(triangle_count, FacePlanes::kNone);
+  r.normals.assign(triangle_count * 3, 0.0);
+
+  // Local frame: the centre of the bounding box of every referenced vertex.
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (size_t i = 0; i < 3 * triangle_count; ++i) {
+    const Float3& p = positions[indices[i]];
+    const double c[3] = {p.x, p.y, p.z};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], c[a]);
+      hi[a] = std::max(hi[a], c[a]);
+    }
+  }
+  if (triangle_count == 0) return r;
+  double diag2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    r.origin[a] = 0.5 * (lo[a] + hi[a]);
+    diag2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
+  }
+  r.diagonal = std::sqrt(diag2);
+  auto local = [&](uint32_t v, double out[3]) {
+    const Float3& p = positions[v];
+    out[0] = double(p.x) - r.origin[0];
+    out[1] = double(p.y) - r.origin[1];
+    out[2] = double(p.z) - r.origin[2];
+  };
+
+  // Unit normals in double; degenerate faces keep a zero normal.
+  const bool have_flags = topology.face_flags.size() == triangle_count;
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (have_flags && (topology.face_flags[f] & (kFaceCollapsed | kFaceZeroArea))) {
+      ++r.degenerate_faces;
+      continue;
+    }
+    double a[3], b[3], c[3];
+    local(indices[3 * f], a);
+    local(indices[3 * f + 1], b);
+    local(indices[3 * f + 2], c);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0.0) || !std::isfinite(len)) {
+      ++r.degenerate_faces;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) r.normals[3 * f + k] = n[k] / len;
+  }
+
+  const double cos_tol = std::cos(options.coplanar_degrees * M_PI / 180.0);
+  const double dist_tol = options.coplanar_distance * r.diagonal;
+  const bool have_edges = topology.face_edges.size() == 3 * triangle_count;
+  std::vector<uint32_t> queue;
+  for (size_t seed = 0; seed < triangle_count; ++seed) {
+    const double* n = &r.normals[3 * seed];
+    if (r.face_plane[seed] != FacePlanes::kNone || (n[0] == 0 && n[1] == 0 && n[2] == 0)) continue;
+    double p0[3];
+    local(indices[3 * seed], p0);
+    const double d = -(n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2]);
+    const uint32_t id = uint32_t(r.plane_count());
+    r.planes.insert(r.planes.end(), {float(n[0]), float(n[1]), float(n[2]), float(d)});
+    r.face_plane[seed] = id;
+    if (!have_edges) continue;
+    queue.assign(1, uint32_t(seed));
+    for (size_t qi = 0; qi < queue.size(); ++qi) {
+      const uint32_t g = queue[qi];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t e = topology.face_edges[3 * size_t(g) + k];
+        if (e == Topology::kNone || topology.edges[e].kind != EdgeKind::Manifold) continue;
+        const Edge& edge = topology.edges[e];
+        uint32_t h = topology.edge_faces[edge.first] >> 1;
+        if (h == g) h = topology.edge_faces[edge.first + 1] >> 1;
+        if (r.face_plane[h] != FacePlanes::kNone) continue;
+        const double* m = &r.normals[3 * size_t(h)];
+        if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < cos_tol) continue;  // also rejects degenerate (0)
+        bool near = true;
+        for (int j = 0; j < 3 && near; ++j) {
+          double q[3];
+          local(indices[3 * size_t(h) + j], q);
+          near = std::fabs(n[0] * q[0] + n[1] * q[1] + n[2] * q[2] + d) <= dist_tol;
+        }
+        if (!near) continue;
+        r.face_plane[h] = id;
+        ++r.shared_faces;
+        queue.push_back(h);
+      }
+    }
+  }
+  return r;
+}
+
+}  // namespace geom

@@ -1,0 +1,84 @@
+#version 450 core
+// Stencil shadow volumes from the static records of geom/shadow_volume.h,
+// extruded to infinity (w = 0) per light. The CPU reference is
+// libgeom/src/extrude.cpp (side_corners, cap_corners): the same math, in the
+// same order (`precise` keeps the plane test free of fused multiply-adds).
+//
+// Draws (one instance per record, vertex attribute divisor 1, no index buffer):
+//   sides  u_caps = false  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, n)
+//          record SvSide, stride 32: p0 (loc 0), p1 (loc 1), plane_a (loc 3),
+//          plane_b (loc 4); location 2 unused.
+//   caps   u_caps = true   glDrawArraysInstanced(GL_TRIANGLES, 0, 6, n)
+//          record SvCap, stride 40: a (loc 0), b (loc 1), c (loc 2), plane (loc 3);
+//          location 4 unused.
+// Depth-fail: sides + caps; depth-pass: sides only. Use a projection with an
+// infinite far plane (or GL_DEPTH_CLAMP). Stencil: see geom/shadow_volume.h.
+//
+// Uniforms:
+//   mat4 u_view_proj          local frame (geom/face_planes.h) -> camera clip space
+//   vec4 u_light              the light in the local frame: (x, y, z, 1) a point
+//                             light, (x, y, z, 0) a directional light lying at
+//                             infinity towards (x, y, z)
+//   bool u_caps               which record kind this draw reads
+//   samplerBuffer u_planes    the volume's `planes`, an RGBA32F texture buffer
+//                             (texture unit set by the application)
+layout(location = 0) in vec3 a_p0;
+layout(location = 1) in vec3 a_p1;
+layout(location = 2) in vec3 a_p2;
+layout(location = 3) in uint a_plane_a;
+layout(location = 4) in uint a_plane_b;
+
+uniform mat4 u_view_proj;
+uniform vec4 u_light;
+uniform bool u_caps;
+uniform samplerBuffer u_planes;
+
+const uint kFlag = 0x80000000u;
+// Direction of a corner that lies on the light itself (no direction of its own).
+const vec3 kAtLight = vec3(0.0, 0.0, -1.0);
+
+bool light_in_front(uint index) {
+  vec4 p = texelFetch(u_planes, int(index & 0x7fffffffu));
+  precise float s = p.x * u_light.x;
+  s = s + p.y * u_light.y;
+  s = s + p.z * u_light.z;
+  s = s + p.w * u_light.w;
+  return s > 0.0;
+}
+
+vec4 far_corner(vec3 v) {
+  vec3 d = v * u_light.w - u_light.xyz;
+  if (d == vec3(0.0)) d = kAtLight;
+  return vec4(d, 0.0);
+}
+
+void main() {
+  int k = gl_VertexID;
+  vec4 corner;
+  if (!u_caps) {
+    bool fa = light_in_front(a_plane_a);
+    bool fb = light_in_front(a_plane_b) != ((a_plane_b & kFlag) != 0u);
+    if (fa == fb) {
+      corner = vec4(a_p0, 1.0);  // the whole instance collapses to one point
+    } else {
+      vec3 a = fa ? a_p1 : a_p0;
+      vec3 b = fa ? a_p0 : a_p1;
+      vec3 v = (k & 1) == 0 ? a : b;
+      corner = k < 2 ? vec4(v, 1.0) : far_corner(v);
+    }
+  } else {
+    bool front = light_in_front(a_plane_a);
+    bool double_sided = (a_plane_a & kFlag) != 0u;
+    if (!front && !double_sided) {
+      corner = vec4(a_p0, 1.0);
+    } else {
+      vec3 second = front ? a_p1 : a_p2;
+      vec3 third = front ? a_p2 : a_p1;
+      // near cap: a, second, third; far cap: a, third, second at infinity
+      int j = k < 3 ? k : k - 3;
+      vec3 v = j == 0 ? a_p0 : ((j == 1) == (k < 3) ? second : third);
+      corner = k < 3 ? vec4(v, 1.0) : far_corner(v);
+    }
+  }
+  gl_Position = u_view_proj * corner;
+}

@@ -1,0 +1,2 @@
+# Runs the geombake binary: build it first.
+add_dependencies(${name} geombake)

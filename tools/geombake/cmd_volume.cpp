@@ -1,0 +1,141 @@
+// geombake volume INPUT --light X,Y,Z,W [--extrude-distance D] -o volume.obj:
+// the shadow volume of one light as a triangle mesh, for debugging assets
+// (geom/extrude.h finite_volume: the CPU reference of shaders/shadow_volume.vert
+// with the points at infinity brought to a finite distance past the bounds).
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "geom/atomic_file.h"
+#include "geom/extrude.h"
+#include "geom/import.h"
+#include "geom/silhouette.h"
+#include "geombake/args.h"
+#include "geombake/command.h"
+#include "geombake/inputs.h"
+
+namespace geombake {
+namespace {
+
+const char* kVolumeHelp =
+    "usage: geombake volume INPUT --light X,Y,Z,W -o volume.obj [options]\n"
+    "  Writes the exact shadow volume of one light as an OBJ triangle mesh: faces\n"
+    "  oriented outward, a face repeated where its multiplicity is 2 or more (open\n"
+    "  and non-manifold surfaces count both sides), extruded to a finite distance\n"
+    "  past the scene's bounds instead of infinity.\n"
+    "  W = 1: a point light at (X,Y,Z); W = 0: a directional light lying at infinity\n"
+    "  in direction (X,Y,Z) (its rays travel along -(X,Y,Z)).\n"
+    "options:\n"
+    "  --light X,Y,Z,W       the light (required)\n"
+    "  -o FILE               the OBJ to write (required; written atomically)\n"
+    "  --extrude-distance D  how far past the bounds (default: the bounds' diagonal)\n"
+    "  --no-caps             sides only (what depth-pass draws; not a closed mesh)\n"
+      "  --weld-tolerance T    merge vertices closer than T (default 0: exact positions)\n"
+    "  -v                    what each rule saved, on stderr\n"
+    "  --patch-level N, --md3-frame N, --max-triangles N  as for `geombake info`\n";
+
+int run_volume(const std::vector<std::string>& argv) {
+  Args args(argv, {"-v", "--help", "-h", "--no-caps"},
+            {"-o", "--light", "--extrude-distance", "--weld-tolerance", "--patch-level", "--md3-frame",
+             "--max-triangles"});
+  if (args.has("--help") || args.has("-h")) {
+    std::fputs(kVolumeHelp, stdout);
+    return 0;
+  }
+  if (!args.error().empty()) {
+    std::fprintf(stderr, "Error: %s\n%s", args.error().c_str(), kVolumeHelp);
+    return 2;
+  }
+  if (args.positional().size() != 1) {
+    std::fprintf(stderr, "Error: give exactly one input file\n%s", kVolumeHelp);
+    return 2;
+  }
+  if (!args.has("--light") || !args.has("-o")) {
+    std::fprintf(stderr, "Error: --light and -o are required\n%s", kVolumeHelp);
+    return 2;
+  }
+  float lf[4];
+  if (!parse_floats(args.get("--light"), 4, lf) || !std::isfinite(lf[0]) || !std::isfinite(lf[1]) ||
+      !std::isfinite(lf[2]) || (lf[3] != 0.0f && lf[3] != 1.0f) ||
+      (lf[3] == 0.0f && lf[0] == 0.0f && lf[1] == 0.0f && lf[2] == 0.0f)) {
+    std::fprintf(stderr,
+                 "Error: --light '%s': expected X,Y,Z,W with finite numbers, W = 1 (point) or W = 0 (a non-zero "
+                 "direction)\n",
+                 args.get("--light").c_str());
+    return 2;
+  }
+  geom::ImportOptions options;
+  float tolerance = 0;
+  double distance = -1;
+  if (!parse_number(args, "--weld-tolerance", tolerance) || !parse_number(args, "--patch-level", options.patch_level) ||
+      !parse_number(args, "--md3-frame", options.md3_frame) ||
+      !parse_number(args, "--max-triangles", options.max_triangles) ||
+      !parse_number(args, "--extrude-distance", distance))
+    return 2;
+  if (args.has("--extrude-distance") && !std::isfinite(distance)) {
+    std::fprintf(stderr, "Error: option --extrude-distance: not a finite number\n");
+    return 2;
+  }
+
+  const std::string& input = args.positional()[0];
+  geom::ImportResult imported = geom::import_file(input, options);
+  if (!imported.ok) {
+    std::fprintf(stderr, "Error: %s\n", imported.error.c_str());
+    return 1;
+  }
+  const geom::Scene& scene = imported.scene;
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+  if (scene.triangle_count() == 0) std::fprintf(stderr, "Warning: %s: no triangles, the volume is empty\n", input.c_str());
+
+  geom::SilhouetteOptions so;
+  so.weld_tolerance = tolerance;
+  so.esm_quads = false;
+  so.adjacency = false;
+  geom::LightVolume light;
+  for (int k = 0; k < 4; ++k) light.light[k] = lf[k];
+  light.name = "--light";
+  geom::SilhouetteBuffers b = geom::bake_silhouettes(geom::positions_of(scene.positions.data(), scene.vertex_count()),
+                                                     scene.indices.data(), scene.triangle_count(), {light}, so);
+
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (size_t i = 0; i < scene.indices.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double c = scene.positions[3 * size_t(scene.indices[i]) + k];
+      lo[k] = i == 0 ? c : std::min(lo[k], c);
+      hi[k] = i == 0 ? c : std::max(hi[k], c);
+    }
+  if (distance < 0) {
+    distance = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                         (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    if (!(distance > 0)) distance = 1;
+  }
+  // The exact volume of this light (geom/shadow_volume.h build_light_volume):
+  // closed components one-sided on the light's side, open ones double-sided.
+  float local[4];
+  geom::to_local_light(b.planes.origin, light.light, local);
+  geom::ShadowVolume volume = b.lights[0].volume;
+  if (args.has("--no-caps")) volume.caps.clear();
+  const geom::VolumeMesh mesh = geom::finite_volume(volume, local, lo, hi, distance);
+  char comment[512];
+  std::snprintf(comment, sizeof comment,
+                "shadow volume of %s\nlight %.9g,%.9g,%.9g,%g (%s), extruded %.9g past the bounds\n"
+                "%zu triangles, %zu vertices; faces oriented outward, repeated by multiplicity",
+                input.c_str(), double(lf[0]), double(lf[1]), double(lf[2]), double(lf[3]),
+                lf[3] != 0 ? "point" : "directional", distance, mesh.indices.size() / 3, mesh.positions.size() / 3);
+  std::string error;
+  if (!geom::write_file_atomically(args.get("-o"), geom::volume_obj(mesh, comment), error)) {
+    std::fprintf(stderr, "Error: %s\n", error.c_str());
+    return 1;
+  }
+  if (args.has("-v")) {
+    std::fputs(geom::silhouette_report(b).c_str(), stderr);
+    std::fprintf(stderr, "volume: %zu triangles written to %s\n", mesh.indices.size() / 3, args.get("-o").c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+GEOMBAKE_COMMAND("volume", "write the shadow volume of one light as an OBJ mesh", run_volume);
+
+}  // namespace geombake
