@@ -8,7 +8,8 @@
 # count, the corpus size and the findings. TARGET: gltf draco obj ply off stl
 # bsp md3 baked (fuzz/fuzz_TARGET.cpp). The corpus grows across runs in
 # build-fuzz/corpus/TARGET; a crashing input is saved in build-fuzz/artifacts/TARGET/
-# and the exit status is non-zero. JOBS=N sets the build's parallelism (default 2).
+# and the exit status is non-zero. JOBS=N sets the build's parallelism (default 2);
+# SKIP_BUILD=1 uses the targets as built (fuzz/run_all.sh builds them once).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ $# -lt 2 ]; then
@@ -31,7 +32,7 @@ if [ ! -f "$build/build.ninja" ]; then
 fi
 targets=("fuzz_$target")
 [ "$target" = baked ] && targets+=(geombake)
-cmake --build "$build" -j"${JOBS:-2}" --target "${targets[@]}"
+[ -n "${SKIP_BUILD:-}" ] || cmake --build "$build" -j"${JOBS:-2}" --target "${targets[@]}"
 
 # Seeds: real files of the target's format, at most 1 MB each (large inputs slow every execution).
 seeds=$build/seeds/$target
