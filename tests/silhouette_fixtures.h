@@ -150,8 +150,10 @@ inline Mesh book(int pages) {
   for (int k = 0; k < pages; ++k) {
     double a = M_PI * (0.1 + 0.8 * k / std::max(1, pages - 1));
     uint32_t p0 = m.add(std::cos(a), std::sin(a), -1), p1 = m.add(std::cos(a), std::sin(a), 1);
-    if (k % 2) m.quad(s0, s1, p1, p0);
-    else m.quad(s0, p0, p1, s1);
+    if (k % 2)
+      m.quad(s0, s1, p1, p0);
+    else
+      m.quad(s0, p0, p1, s1);
   }
   return m;
 }
@@ -162,7 +164,7 @@ inline Mesh bowtie() {
   Mesh m = box(0, 0, 0, 1, 1, 1);
   m.append(box(1, 1, 0, 2, 2, 1));  // shares the edge x = y = 1: 4 faces
   m.append(box(-2, 0, 0, -1, 1, 1));
-  Mesh fin;                         // on the edge x = -1, y = 1: 3 faces
+  Mesh fin;  // on the edge x = -1, y = 1: 3 faces
   uint32_t a = fin.add(-1, 1, 0), b = fin.add(-1, 1, 1), c = fin.add(-0.4, 1.7, 1), d = fin.add(-0.4, 1.7, 0);
   fin.quad(a, b, c, d);
   m.append(fin);
@@ -201,6 +203,27 @@ inline Mesh degenerate_box() {
   }
   m.tri(1, 2, mid);  // zero area (collinear), wound against the T-junction
   m.tri(3, 3, 7);    // collapsed
+  return m;
+}
+
+//   A closed box whose top face holds a sliver: m sits 1e-6 inside edge 4-5
+//   and 1e-7 above the face, so the sliver (4, 5, m) has its own plane, tilted
+//   about 6 degrees, and an area of 1e-6.
+//        7---------6
+//        |  .   .  |
+//        | .     . |
+//        4----m----5
+inline Mesh sliver_box() {
+  Mesh m = box(-1, -1, -1, 1, 1, 1);
+  m.name = "sliver_box";
+  const uint32_t mid = m.add(0, -1 + 1e-6, 1 + 1e-7);
+  // the top face quad(4, 5, 6, 7) is triangles 2 and 3
+  uint32_t* t = &m.indices[3 * 2];
+  t[0] = 4, t[1] = 5, t[2] = mid;
+  t = &m.indices[3 * 3];
+  t[0] = 4, t[1] = mid, t[2] = 7;
+  m.tri(mid, 5, 6);
+  m.tri(mid, 6, 7);
   return m;
 }
 

@@ -53,7 +53,7 @@ uint32_t expected_neighbour(const std::vector<uint32_t>& idx, size_t t, int k) {
 TEST(Adjacency, FollowsTheDocumentedRule) {
   for (const Mesh& m : {fixtures::box(0, 0, 0, 1, 1, 1), fixtures::torus(9, 6), fixtures::sheet(4, 0.2),
                         fixtures::book(5), fixtures::bowtie(), fixtures::flipped_box(), fixtures::degenerate_box(),
-                        fixtures::stack()}) {
+                        fixtures::stack(), fixtures::sliver_box()}) {
     const fixtures::Baked b = fixtures::bake(m);
     const std::vector<uint32_t> adj = adjacency_of(b);
     const std::vector<uint32_t>& idx = b.weld.indices;

@@ -89,10 +89,10 @@ std::vector<Light> random_lights(const Mesh& m, std::mt19937& rng) {
 
 TEST(EsmQuads, OpenExactlyForSilhouetteEdges) {
   std::mt19937 rng(2024);
-  for (Mesh m : {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(14, 8), fixtures::torus(14, 8),
-                 fixtures::sheet(6, 0.3), fixtures::open_box(), fixtures::book(5), fixtures::bowtie(),
-                 fixtures::flipped_box(), fixtures::degenerate_box(), fixtures::stack(),
-                 fixtures::sheet(5, 0.0, 7, 1e-7)}) {
+  for (Mesh m :
+       {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(14, 8), fixtures::torus(14, 8), fixtures::sheet(6, 0.3),
+        fixtures::open_box(), fixtures::book(5), fixtures::bowtie(), fixtures::flipped_box(),
+        fixtures::degenerate_box(), fixtures::stack(), fixtures::sheet(5, 0.0, 7, 1e-7), fixtures::sliver_box()}) {
     for (double shift : {0.0, 1e5}) {
       Mesh shifted = m;
       shifted.translate(shift, shift, -shift);
@@ -147,7 +147,8 @@ TEST(EsmQuads, OpenExactlyForSilhouetteEdges) {
               const float* bp = &b.esm.planes[4 * (q->plane_b & 0x7fffffffu)];
               const float* ap = &b.esm.planes[4 * (q->plane_a & 0x7fffffffu)];
               for (const float* pl : {ap, bp}) {  // bevel planes too
-                double s = double(pl[0]) * lf[0] + double(pl[1]) * lf[1] + double(pl[2]) * lf[2] + double(pl[3]) * lf[3];
+                double s =
+                    double(pl[0]) * lf[0] + double(pl[1]) * lf[1] + double(pl[2]) * lf[2] + double(pl[3]) * lf[3];
                 near_plane |= std::fabs(s) < eps * (l.w != 0 ? 1 : 1 / b.planes.diagonal);
               }
               open += geom::esm_corners(*q, b.esm.planes.data(), lf, mvp, 0.01f, c);
@@ -176,11 +177,17 @@ TEST(EsmQuads, OpenExactlyForSilhouetteEdges) {
   }
 }
 
-TEST(EsmQuads, ClosedConvexSilhouetteLoops) {
+// Closed loops: on convex meshes (nothing concave to skip), and on a torus
+// with EsmOptions::keep_concave (every non-coplanar edge kept).
+TEST(EsmQuads, ClosedSilhouetteLoops) {
   std::mt19937 rng(3);
-  for (const Mesh& m : {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(20, 11)}) {
-    const fixtures::Baked b = fixtures::bake(m);
+  geom::EsmOptions keep;
+  keep.keep_concave = true;
+  for (const Mesh& m : {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(20, 11), fixtures::torus(16, 9)}) {
+    const bool torus = m.name == "torus";
+    const fixtures::Baked b = fixtures::bake(m, {}, torus ? keep : geom::EsmOptions{});
     EXPECT_EQ(b.esm.stats.skipped_concave, 0u);
+    if (torus) EXPECT_EQ(b.esm.stats.emitted_edges, b.esm.stats.candidate_edges - b.esm.stats.skipped_coplanar);
     for (const Light& l : random_lights(m, rng)) {
       const double wl[4] = {l.xyz[0], l.xyz[1], l.xyz[2], l.w};
       float lf[4], mvp[16], c[4][4];

@@ -30,16 +30,16 @@ struct Context {
   EGLContext context = EGL_NO_CONTEXT;
   std::string error;
   Context() {
-    auto get_display =
-        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    auto get_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (get_display) display = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     EGLint major, minor;
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor) || !eglBindAPI(EGL_OPENGL_API)) {
       error = "no surfaceless EGL display";
       return;
     }
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint attribs[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     context = eglCreateContext(display, nullptr, EGL_NO_CONTEXT, attribs);
     if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
       error = "no OpenGL 4.5 core context";
@@ -92,8 +92,7 @@ GLuint program(const std::string& file, std::string& log) {
 // Draws `instances` x `per` points from `records` (stride bytes) and returns
 // the captured clip positions (4 floats each).
 std::vector<float> capture(GLuint prog, const void* records, size_t bytes, GLsizei stride, GLsizei instances,
-                           GLsizei per, const std::vector<float>& planes,
-                           void (*layout)(GLsizei stride)) {
+                           GLsizei per, const std::vector<float>& planes, void (*layout)(GLsizei stride)) {
   GLuint vao, vbo, tbo, tex, out;
   glGenVertexArrays(1, &vao);
   glBindVertexArray(vao);
@@ -134,7 +133,8 @@ void attrib(GLuint loc, GLint size, GLenum type, GLsizei stride, size_t offset, 
   if (integer)
     glVertexAttribIPointer(loc, size, type, stride, reinterpret_cast<const void*>(offset));
   else
-    glVertexAttribPointer(loc, size, type, normalized ? GL_TRUE : GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+    glVertexAttribPointer(loc, size, type, normalized ? GL_TRUE : GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offset));
   glVertexAttribDivisor(loc, 1);
 }
 
@@ -193,8 +193,8 @@ TEST(GlSilhouetteShaders, MatchTheCpuReference) {
         glUniformMatrix4fv(glGetUniformLocation(sv, "u_view_proj"), 1, GL_FALSE, kIdentity);
         glUniform4fv(glGetUniformLocation(sv, "u_light"), 1, light);
         glUniform1i(glGetUniformLocation(sv, "u_caps"), 0);
-        std::vector<float> gpu = capture(sv, v->sides.data(), v->sides.size() * 32, 32, GLsizei(v->sides.size()), 4,
-                                         v->planes, side_layout);
+        std::vector<float> gpu =
+            capture(sv, v->sides.data(), v->sides.size() * 32, 32, GLsizei(v->sides.size()), 4, v->planes, side_layout);
         ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
         for (size_t i = 0; i < v->sides.size(); ++i) {
           float c[4][4];

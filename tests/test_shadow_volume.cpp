@@ -31,6 +31,8 @@
 #include <random>
 
 #include "geom/extrude.h"
+#include "geom/import.h"
+#include "geom/silhouette.h"
 #include "silhouette_fixtures.h"
 
 namespace {
@@ -133,8 +135,8 @@ struct Embree {
   Embree(const std::vector<V>& verts, const std::vector<uint32_t>& idx) {
     scene = rtcNewScene(device);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float* vb = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, verts.size()));
+    float* vb =
+        static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 12, verts.size()));
     for (size_t i = 0; i < verts.size(); ++i)
       for (int k = 0; k < 3; ++k) vb[3 * i + k] = float(verts[i][k]);
     unsigned* ib = static_cast<unsigned*>(
@@ -187,9 +189,8 @@ struct LawStats {
 void check_laws(const Mesh& mesh, const fixtures::Baked& b, const Light& light, bool one_sided, std::mt19937& rng,
                 LawStats& stats, int points = 250, const geom::ShadowVolume* volume = nullptr,
                 const Light* reference = nullptr) {
-  SCOPED_TRACE(mesh.name + ", light " + light.what + (one_sided ? ", one-sided" : "") + " at " +
-               fmt17(light.xyz[0]) + " " + fmt17(light.xyz[1]) + " " +
-               fmt17(light.xyz[2]) + " " + fmt17(light.w));
+  SCOPED_TRACE(mesh.name + ", light " + light.what + (one_sided ? ", one-sided" : "") + " at " + fmt17(light.xyz[0]) +
+               " " + fmt17(light.xyz[1]) + " " + fmt17(light.xyz[2]) + " " + fmt17(light.w));
   const double* o = b.planes.origin;
   // Mesh in the local frame, double (for the brute force and Embree).
   std::vector<V> verts(b.weld.vertex_count());
@@ -283,8 +284,8 @@ void check_laws(const Mesh& mesh, const fixtures::Baked& b, const Light& light, 
     const V q = light.w != 0 ? L : add(p, mul(L, 1e3 * (diag + norm(p)) / norm(L)));
     int crossed = 0;
     for (size_t f : live)
-      if ((!one_sided || front_face(f)) && segment_crosses(p, q, verts[idx[3 * f]], verts[idx[3 * f + 1]],
-                                                           verts[idx[3 * f + 2]]))
+      if ((!one_sided || front_face(f)) &&
+          segment_crosses(p, q, verts[idx[3 * f]], verts[idx[3 * f + 1]], verts[idx[3 * f + 2]]))
         ++crossed;
     // The winding number of a closed surface does not depend on the ray; a ray
     // that grazes an edge (in double) can miscount, so take the median of three.
@@ -355,8 +356,8 @@ std::vector<Light> lights_for(const Mesh& m, std::mt19937& rng, bool outside_onl
     for (const Light& l : out) {
       double d = HUGE_VAL;
       for (size_t f = 0; l.w != 0 && f < m.triangle_count(); ++f)
-        d = std::min(d, point_triangle(l.xyz, vert(m.indices[3 * f]), vert(m.indices[3 * f + 1]),
-                                       vert(m.indices[3 * f + 2])));
+        d = std::min(
+            d, point_triangle(l.xyz, vert(m.indices[3 * f]), vert(m.indices[3 * f + 1]), vert(m.indices[3 * f + 2])));
       if (d >= 5e-6 * diag) kept.push_back(l);
     }
     out.swap(kept);
@@ -374,10 +375,18 @@ std::vector<Light> lights_for(const Mesh& m, std::mt19937& rng, bool outside_onl
 }
 
 std::vector<Mesh> all_meshes() {
-  return {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(12, 7), fixtures::torus(12, 8),
-          fixtures::sheet(6, 0.3),           fixtures::open_box(),      fixtures::book(4),
-          fixtures::bowtie(),                fixtures::flipped_box(),   fixtures::degenerate_box(),
-          fixtures::stack(),                 fixtures::sheet(5, 0.0, 7, 1e-7)};
+  return {fixtures::box(-1, -1, -1, 1, 1, 1),
+          fixtures::sphere(12, 7),
+          fixtures::torus(12, 8),
+          fixtures::sheet(6, 0.3),
+          fixtures::open_box(),
+          fixtures::book(4),
+          fixtures::bowtie(),
+          fixtures::flipped_box(),
+          fixtures::degenerate_box(),
+          fixtures::stack(),
+          fixtures::sheet(5, 0.0, 7, 1e-7),
+          fixtures::sliver_box()};
 }
 
 Light shifted(Light l, double s) {
@@ -490,6 +499,72 @@ TEST(ShadowVolume, PerLightVolumes) {
   EXPECT_EQ(in.caps.size(), 12u);
 }
 
+// The bundled default scene (glTF, KHR_lights_punctual point and directional
+// lights; 27 closed boxes and an open ground): bake_silhouettes emits one exact
+// volume per declared light, the laws hold for each, and the report names
+// what every rule saved.
+TEST(ShadowVolume, DefaultSceneLights) {
+  geom::ImportResult r = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
+  ASSERT_TRUE(r.ok) << r.error;
+  std::vector<geom::LightVolume> lights = geom::scene_lights(r.scene);
+  ASSERT_EQ(lights.size(), 2u);
+  const geom::SilhouetteBuffers sb =
+      geom::bake_silhouettes(geom::positions_of(r.scene.positions.data(), r.scene.vertex_count()),
+                             r.scene.indices.data(), r.scene.triangle_count(), lights);
+  const std::string report = geom::silhouette_report(sb);
+  for (const char* rule : {"rule coplanar", "rule concave", "rule per-light", "per emitted edge"})
+    EXPECT_NE(report.find(rule), std::string::npos) << report;
+  EXPECT_EQ(sb.adjacency.size(), 6 * r.scene.triangle_count());
+  Mesh m;
+  m.name = "default_scene";
+  m.positions = r.scene.positions;
+  m.indices = r.scene.indices;
+  const fixtures::Baked b = fixtures::bake(m);
+  std::mt19937 rng(3);
+  for (const geom::LightVolume& l : sb.lights) {
+    ASSERT_TRUE(l.volume.per_light);
+    EXPECT_GT(l.volume.stats.light_one_sided, 20u) << l.name;  // the closed boxes
+    EXPECT_LT(l.volume.stats.bytes, sb.volume.stats.bytes / 2) << l.name;
+    LawStats stats;
+    Light light{{l.light[0], l.light[1], l.light[2]}, l.light[3], "scene light " + l.name};
+    check_laws(m, b, light, false, rng, stats, 300, &l.volume);
+    EXPECT_GT(stats.shadowed, 10) << stats.checked << " checked, " << stats.excluded << " excluded";
+  }
+}
+
+// A real game level (OpenArena's aggressor.bsp, Quake 3 IBSP through the
+// importer): open, non-manifold (edges with up to 4 faces), inconsistent
+// windings, duplicate and collapsed triangles. Lights anywhere in the level.
+TEST(ShadowVolume, Quake3Level) {
+  const std::string map = "/usr/share/games/openarena/baseoa/pak1-maps.pk3:maps/aggressor.bsp";
+  geom::ImportResult r = geom::import_file(map);
+  if (!r.ok && r.error.find("No such file") != std::string::npos) GTEST_SKIP() << r.error;
+  ASSERT_TRUE(r.ok) << r.error;
+  Mesh m;
+  m.name = "aggressor.bsp";
+  m.positions = r.scene.positions;
+  m.indices = r.scene.indices;
+  const fixtures::Baked b = fixtures::bake(m);
+  EXPECT_GT(b.topology.stats.non_manifold_edges, 0u);
+  EXPECT_GT(b.topology.stats.inconsistent_edges, 0u);
+  std::mt19937 rng(2718);
+  std::vector<Light> lights = lights_for(m, rng, false);
+  ASSERT_GT(lights.size(), 6u);
+  LawStats stats;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    check_laws(m, b, lights[i], false, rng, stats, 60);
+    if (::testing::Test::HasFailure()) return;
+    float lf[4];
+    const double wl[4] = {lights[i].xyz[0], lights[i].xyz[1], lights[i].xyz[2], lights[i].w};
+    geom::to_local_light(b.planes.origin, wl, lf);
+    const geom::ShadowVolume lv = geom::build_light_volume(b.volume, lf);
+    check_laws(m, b, lights[i], false, rng, stats, 30, &lv);
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(stats.shadowed, stats.checked / 20);
+  EXPECT_LT(stats.excluded, stats.checked);
+}
+
 // The finite mesh of `geombake volume`: closed as an indexed mesh, and its
 // crossing count equals the infinite volume's inside the scene's bounds.
 TEST(ShadowVolume, FiniteVolumeMatchesInsideBounds) {
@@ -500,7 +575,8 @@ TEST(ShadowVolume, FiniteVolumeMatchesInsideBounds) {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     for (size_t i = 0; i < m.vertex_count(); ++i)
       for (int k = 0; k < 3; ++k)
-        lo[k] = std::min(lo[k], double(m.positions[3 * i + k])), hi[k] = std::max(hi[k], double(m.positions[3 * i + k]));
+        lo[k] = std::min(lo[k], double(m.positions[3 * i + k])),
+        hi[k] = std::max(hi[k], double(m.positions[3 * i + k]));
     for (const Light& l : {Light{{0.3, 4, 0.2}, 1, "above"}, Light{{0.4, 1, 0.3}, 0, "directional"}}) {
       const double wl[4] = {l.xyz[0], l.xyz[1], l.xyz[2], l.w};
       float lf[4];
@@ -559,6 +635,7 @@ TEST(ShadowVolume, TinyMeshRecords) {
   b = fixtures::bake(fixtures::box(0, 0, 0, 1, 1, 1));
   EXPECT_EQ(b.topology.edges.size(), 18u);
   EXPECT_EQ(b.volume.stats.skipped_coplanar, 6u);
+  EXPECT_EQ(b.volume.stats.skipped_coplanar_records, 12u);  // double-sided: 2 records each
   EXPECT_EQ(b.volume.stats.pair_edges, 12u);
   EXPECT_EQ(b.volume.sides.size(), 24u);
   EXPECT_EQ(b.volume.caps.size(), 12u);

@@ -126,8 +126,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         const V3 nbev = length(s) > 1e-6 ? normalize(s) : normalize(cross(p1 - p0, na));
         const V3 mid = (p0 + p1) * 0.5;
         const uint32_t pbev = uint32_t(r.planes.size() / 4);
-        r.planes.insert(r.planes.end(),
-                        {float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid))});
+        r.planes.insert(r.planes.end(), {float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid))});
         emit(p0, p1, pa, pbev, normalize(na + nbev));
         emit(p0, p1, pbev, pb, normalize(nbev + nb));
         ++st.bevel_edges;

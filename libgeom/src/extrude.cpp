@@ -4,10 +4,10 @@
 // volume of `geombake volume` only replaces the points at infinity.
 #include "geom/extrude.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <algorithm>
 #include <map>
 #include <tuple>
 
@@ -34,7 +34,6 @@ inline void far_corner(const float v[3], const float light[4], float out[4]) {
   out[3] = 0.0f;
   if (out[0] == 0.0f && out[1] == 0.0f && out[2] == 0.0f) out[2] = -1.0f;
 }
-
 
 // The shader's side instance; `base` receives each corner's vertex.
 bool side_eval(const SvSide& s, const float* planes, const float light[4], float out[4][4], const float* base[4]) {
@@ -114,8 +113,8 @@ std::vector<float> extrude_volume(const ShadowVolume& v, const float light[4], b
   return tris;
 }
 
-bool esm_corners(const EsmQuad& quad, const float* planes, const float light[4], const float m[16],
-                 float extrude_scale, float out[4][4]) {
+bool esm_corners(const EsmQuad& quad, const float* planes, const float light[4], const float m[16], float extrude_scale,
+                 float out[4][4]) {
   float q[3];
   octahedral_decode(quad.q, q);
   const bool fa = front_of(planes, quad.plane_a, light) != bool(quad.plane_a & EsmQuad::kFlip);

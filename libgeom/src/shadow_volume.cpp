@@ -27,8 +27,7 @@ void put(float out[3], const Float3& p, const double origin[3]) {
 }  // namespace
 
 ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                                 const Topology& topology, const FacePlanes& fp,
-                                 const ShadowVolumeOptions& options) {
+                                 const Topology& topology, const FacePlanes& fp, const ShadowVolumeOptions& options) {
   ShadowVolume sv;
   ShadowVolumeStats& st = sv.stats;
   for (int a = 0; a < 3; ++a) sv.origin[a] = fp.origin[a];
@@ -95,6 +94,7 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
       const uint32_t fb = (live[0] & 1u) ? live[0] >> 1 : live[1] >> 1;
       if (fp.face_plane[fa] == fp.face_plane[fb]) {
         ++st.skipped_coplanar;
+        st.skipped_coplanar_records += double_sided[fa] ? 2 : 1;
         continue;
       }
       SvSide s;
@@ -197,8 +197,8 @@ int light_inside(const std::vector<const SvCap*>& faces, const float light[4]) {
                                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
   for (const SvCap* c : faces)
     if (point_triangle_distance(L, d3(c->a), d3(c->b), d3(c->c)) < 1e-6 * diag) return -1;
-  static const D3 dirs[4] = {{0.5773, 0.5775, 0.5773}, {-0.2673, 0.8018, -0.5346}, {0.7071, -0.1, -0.7},
-                             {-0.45, -0.62, 0.64}};
+  static const D3 dirs[4] = {
+      {0.5773, 0.5775, 0.5773}, {-0.2673, 0.8018, -0.5346}, {0.7071, -0.1, -0.7}, {-0.45, -0.62, 0.64}};
   for (const D3& d : dirs) {
     int crossings = 0;
     bool grazing = false;
@@ -244,8 +244,8 @@ ShadowVolume build_light_volume(const ShadowVolume& generic, const float light[4
 
   // Where the light is, for each closed component that was stored double-sided.
   const size_t nc = generic.component_closed.size();
-  const bool have_ids = generic.cap_component.size() == generic.caps.size() &&
-                        generic.side_component.size() == generic.sides.size();
+  const bool have_ids =
+      generic.cap_component.size() == generic.caps.size() && generic.side_component.size() == generic.sides.size();
   std::vector<int> inside(nc, -1);
   if (have_ids) {
     std::vector<std::vector<const SvCap*>> faces(nc);

@@ -63,32 +63,35 @@ std::string silhouette_report(const SilhouetteBuffers& b) {
                 (unsigned long long)b.topology.stats.triangles, (unsigned long long)b.planes.degenerate_faces,
                 b.planes.plane_count(), (unsigned long long)b.planes.shared_faces);
   s += line;
-  std::snprintf(line, sizeof line,
-                "esm quads: %llu candidate edges, %llu emitted (%.1f%%), %llu quads (%llu bevel edges), %llu "
-                "bytes = %.1f per emitted edge (naive 160-byte layout, every candidate: %llu bytes)\n",
-                (unsigned long long)e.candidate_edges, (unsigned long long)e.emitted_edges,
-                pct(e.emitted_edges, e.candidate_edges), (unsigned long long)e.quads,
-                (unsigned long long)e.bevel_edges, (unsigned long long)e.bytes,
-                e.emitted_edges ? double(e.bytes) / e.emitted_edges : 0.0, (unsigned long long)e.naive_bytes);
-  s += line;
-  std::snprintf(line, sizeof line,
-                "  rule coplanar: %llu edges skipped, %llu quads / %llu bytes saved\n"
-                "  rule concave:  %llu edges skipped, %llu quads / %llu bytes saved\n"
-                "  packing: %llu bytes saved against the naive layout\n",
-                (unsigned long long)e.skipped_coplanar, (unsigned long long)e.skipped_coplanar,
-                (unsigned long long)(e.skipped_coplanar * 160), (unsigned long long)e.skipped_concave,
-                (unsigned long long)e.skipped_concave, (unsigned long long)(e.skipped_concave * 160),
-                (unsigned long long)(e.naive_bytes > e.bytes ? e.naive_bytes - e.bytes : 0));
-  s += line;
+  if (e.edges > 0) {  // built (SilhouetteOptions::esm_quads)
+    std::snprintf(line, sizeof line,
+                  "esm quads: %llu candidate edges, %llu emitted (%.1f%%), %llu quads (%llu bevel edges), %llu "
+                  "bytes = %.1f per emitted edge (naive 160-byte layout, every candidate: %llu bytes)\n",
+                  (unsigned long long)e.candidate_edges, (unsigned long long)e.emitted_edges,
+                  pct(e.emitted_edges, e.candidate_edges), (unsigned long long)e.quads,
+                  (unsigned long long)e.bevel_edges, (unsigned long long)e.bytes,
+                  e.emitted_edges ? double(e.bytes) / e.emitted_edges : 0.0, (unsigned long long)e.naive_bytes);
+    s += line;
+    std::snprintf(line, sizeof line,
+                  "  rule coplanar: %llu edges skipped, %llu quads / %llu bytes saved (naive layout)\n"
+                  "  rule concave:  %llu edges skipped, %llu quads / %llu bytes saved (naive layout)\n"
+                  "  packing: %llu bytes saved against the naive layout\n",
+                  (unsigned long long)e.skipped_coplanar, (unsigned long long)e.skipped_coplanar,
+                  (unsigned long long)(e.skipped_coplanar * 160), (unsigned long long)e.skipped_concave,
+                  (unsigned long long)e.skipped_concave, (unsigned long long)(e.skipped_concave * 160),
+                  (unsigned long long)(e.naive_bytes > e.bytes ? e.naive_bytes - e.bytes : 0));
+    s += line;
+  }
   std::snprintf(line, sizeof line,
                 "shadow volume: %llu side records (%llu pair edges, %llu single), %llu caps, %llu one-sided / "
                 "%llu double-sided faces, %llu bytes (per-face frusta: %llu sides, %llu bytes)\n"
                 "  rule coplanar: %llu side records / %llu bytes saved\n",
-                (unsigned long long)v.sides, (unsigned long long)v.pair_edges,
-                (unsigned long long)v.single_records, (unsigned long long)v.caps,
-                (unsigned long long)v.one_sided_faces, (unsigned long long)v.double_sided_faces,
-                (unsigned long long)v.bytes, (unsigned long long)v.naive_sides, (unsigned long long)v.naive_bytes,
-                (unsigned long long)v.skipped_coplanar, (unsigned long long)(v.skipped_coplanar * sizeof(SvSide)));
+                (unsigned long long)v.sides, (unsigned long long)v.pair_edges, (unsigned long long)v.single_records,
+                (unsigned long long)v.caps, (unsigned long long)v.one_sided_faces,
+                (unsigned long long)v.double_sided_faces, (unsigned long long)v.bytes,
+                (unsigned long long)v.naive_sides, (unsigned long long)v.naive_bytes,
+                (unsigned long long)v.skipped_coplanar_records,
+                (unsigned long long)(v.skipped_coplanar_records * sizeof(SvSide)));
   s += line;
   for (const LightVolume& l : b.lights) {
     const ShadowVolumeStats& lv = l.volume.stats;

@@ -30,14 +30,14 @@ const char* kVolumeHelp =
     "  -o FILE               the OBJ to write (required; written atomically)\n"
     "  --extrude-distance D  how far past the bounds (default: the bounds' diagonal)\n"
     "  --no-caps             sides only (what depth-pass draws; not a closed mesh)\n"
-      "  --weld-tolerance T    merge vertices closer than T (default 0: exact positions)\n"
+    "  --weld-tolerance T    merge vertices closer than T (default 0: exact positions)\n"
     "  -v                    what each rule saved, on stderr\n"
     "  --patch-level N, --md3-frame N, --max-triangles N  as for `geombake info`\n";
 
 int run_volume(const std::vector<std::string>& argv) {
-  Args args(argv, {"-v", "--help", "-h", "--no-caps"},
-            {"-o", "--light", "--extrude-distance", "--weld-tolerance", "--patch-level", "--md3-frame",
-             "--max-triangles"});
+  Args args(
+      argv, {"-v", "--help", "-h", "--no-caps"},
+      {"-o", "--light", "--extrude-distance", "--weld-tolerance", "--patch-level", "--md3-frame", "--max-triangles"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kVolumeHelp, stdout);
     return 0;
@@ -85,7 +85,8 @@ int run_volume(const std::vector<std::string>& argv) {
   }
   const geom::Scene& scene = imported.scene;
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
-  if (scene.triangle_count() == 0) std::fprintf(stderr, "Warning: %s: no triangles, the volume is empty\n", input.c_str());
+  if (scene.triangle_count() == 0)
+    std::fprintf(stderr, "Warning: %s: no triangles, the volume is empty\n", input.c_str());
 
   geom::SilhouetteOptions so;
   so.weld_tolerance = tolerance;

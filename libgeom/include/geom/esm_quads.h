@@ -85,15 +85,15 @@ struct EsmQuad {
 static_assert(sizeof(EsmQuad) == 36, "EsmQuad is the 36-byte GPU record");
 
 struct EsmStats {
-  uint64_t edges = 0;              // all edges of the topology
-  uint64_t candidate_edges = 0;    // edges with at least one non-degenerate face
-  uint64_t emitted_edges = 0;      // edges that got at least one quad
-  uint64_t skipped_coplanar = 0;   // shared stored plane: can never open
-  uint64_t skipped_concave = 0;    // inside the occluder
-  uint64_t quads = 0;              // records (2 for a bevel edge, 2 per face of a boundary / non-manifold edge)
-  uint64_t bevel_edges = 0;        // edge-face pairs split against a bevel plane
-  uint64_t bytes = 0;              // quads * 36 + planes * 16
-  uint64_t naive_bytes = 0;        // 160 bytes per quad of every candidate edge, nothing skipped
+  uint64_t edges = 0;             // all edges of the topology
+  uint64_t candidate_edges = 0;   // edges with at least one non-degenerate face
+  uint64_t emitted_edges = 0;     // edges that got at least one quad
+  uint64_t skipped_coplanar = 0;  // shared stored plane: can never open
+  uint64_t skipped_concave = 0;   // inside the occluder
+  uint64_t quads = 0;             // records (2 for a bevel edge, 2 per face of a boundary / non-manifold edge)
+  uint64_t bevel_edges = 0;       // edge-face pairs split against a bevel plane
+  uint64_t bytes = 0;             // quads * 36 + planes * 16
+  uint64_t naive_bytes = 0;       // 160 bytes per quad of every candidate edge, nothing skipped
 };
 
 struct EsmQuads {

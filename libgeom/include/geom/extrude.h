@@ -9,7 +9,9 @@
 // directional light lying at infinity in direction (x, y, z) (towards the
 // light; its rays travel along -(x, y, z)). Buffers live in a local frame
 // (geom/face_planes.h); to_local_light converts a light from input coordinates.
-// A corner extruded to infinity is (v * L.w - L.xyz, 0): away from the light.
+// A corner extruded to infinity is (v * L.w - L.xyz, 0): away from the light;
+// (0, 0, -1, 0) when that is zero (a point light exactly on the vertex, see
+// "Limits" in geom/shadow_volume.h).
 #pragma once
 #include <cstdint>
 #include <string>

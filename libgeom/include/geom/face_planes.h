@@ -43,13 +43,13 @@ struct FacePlaneOptions {
 
 struct FacePlanes {
   static constexpr uint32_t kNone = 0xffffffffu;
-  double origin[3] = {0, 0, 0};     // the local frame's origin in input coordinates
-  double diagonal = 0;              // bounding-box diagonal of the referenced vertices
-  std::vector<float> planes;        // 4 floats per stored plane (see above)
-  std::vector<uint32_t> face_plane; // per triangle: index of its plane, kNone if degenerate
-  std::vector<double> normals;      // per triangle: unit normal in double (0,0,0 if degenerate)
-  uint64_t degenerate_faces = 0;    // faces without a plane
-  uint64_t shared_faces = 0;        // faces that reuse the plane of an earlier face of their group
+  double origin[3] = {0, 0, 0};      // the local frame's origin in input coordinates
+  double diagonal = 0;               // bounding-box diagonal of the referenced vertices
+  std::vector<float> planes;         // 4 floats per stored plane (see above)
+  std::vector<uint32_t> face_plane;  // per triangle: index of its plane, kNone if degenerate
+  std::vector<double> normals;       // per triangle: unit normal in double (0,0,0 if degenerate)
+  uint64_t degenerate_faces = 0;     // faces without a plane
+  uint64_t shared_faces = 0;         // faces that reuse the plane of an earlier face of their group
   size_t plane_count() const { return planes.size() / 4; }
 };
 

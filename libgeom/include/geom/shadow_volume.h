@@ -117,19 +117,20 @@ static_assert(sizeof(SvSide) == 32, "SvSide is the 32-byte GPU record");
 static_assert(sizeof(SvCap) == 40, "SvCap is the 40-byte GPU record");
 
 struct ShadowVolumeStats {
-  uint64_t edges = 0;              // all edges of the topology
-  uint64_t pair_edges = 0;         // manifold consistent edges given a pair record
-  uint64_t single_records = 0;     // boundary, inconsistent and non-manifold face records
-  uint64_t skipped_coplanar = 0;   // pair edges not emitted: shared stored plane
-  uint64_t one_sided_faces = 0;    // faces of closed components, with one_sided_closed
-  uint64_t double_sided_faces = 0; // all other non-degenerate faces
-  uint64_t degenerate_faces = 0;   // no plane, no cap
-  uint64_t sides = 0, caps = 0;    // records
-  uint64_t bytes = 0;              // sides * 32 + caps * 40 + planes * 16
-  uint64_t naive_sides = 0;        // one record per edge and face: every face's own frustum
-  uint64_t naive_bytes = 0;        // naive_sides * 32 + caps * 40 + planes * 16
+  uint64_t edges = 0;                     // all edges of the topology
+  uint64_t pair_edges = 0;                // manifold consistent edges given a pair record
+  uint64_t single_records = 0;            // boundary, inconsistent and non-manifold face records
+  uint64_t skipped_coplanar = 0;          // pair edges not emitted: shared stored plane
+  uint64_t skipped_coplanar_records = 0;  // the records they would have taken (2 each double-sided)
+  uint64_t one_sided_faces = 0;           // faces of closed components, with one_sided_closed
+  uint64_t double_sided_faces = 0;        // all other non-degenerate faces
+  uint64_t degenerate_faces = 0;          // no plane, no cap
+  uint64_t sides = 0, caps = 0;           // records
+  uint64_t bytes = 0;                     // sides * 32 + caps * 40 + planes * 16
+  uint64_t naive_sides = 0;               // one record per edge and face: every face's own frustum
+  uint64_t naive_bytes = 0;               // naive_sides * 32 + caps * 40 + planes * 16
   uint64_t components = 0, closed_components = 0;
-  uint64_t light_one_sided = 0;    // per-light volume: closed components treated one-sided
+  uint64_t light_one_sided = 0;  // per-light volume: closed components treated one-sided
 };
 
 struct ShadowVolume {
