@@ -66,10 +66,15 @@ case $target in
         unzip -p "$pk3" "$m" >"$seeds/$(echo "$m" | tr / _)"
       done
     fi ;;
-  baked)  # containers baked here from small real files of every format
+  baked)  # containers baked here from small real files of every format, after the mode byte
     for f in "$data"/draco/{cube_att.obj,test_nm.obj,Box.ply,deg_faces.obj,non_manifold_wrap.obj} \
-             "$data"/draco/Box/glTF-Draco/Box.gltf "$assimp"/OFF/Wuson.off "$assimp"/STL/Spider_ascii.stl; do
-      [ -f "$f" ] && "$build/tools/geombake" bake "$f" -o "$seeds/$(basename "$f").gbake" >/dev/null 2>&1 || true
+             "$data"/draco/Box/glTF_Binary/Box_Draco.glb "$assimp"/OFF/Wuson.off "$assimp"/STL/Spider_ascii.stl \
+             /usr/share/games/openarena/baseoa/pak2-players.pk3:models/players/gargoyle/head_2.md3; do
+      g=$build/seeds/$(basename "$f").gbake
+      "$build/tools/geombake" bake "$f" -o "$g" --light 1,2,3,1 >/dev/null 2>&1 || continue
+      { printf '\0'; cat "$g"; } >"$seeds/0_$(basename "$g")"   # mode 0: read as it is
+      { printf '\1'; cat "$g"; } >"$seeds/1_$(basename "$g")"   # mode 1: checksums repaired
+      rm -f "$g"
     done ;;
 esac
 [ -n "$(ls -A "$seeds")" ] || { echo "Error: no seed files found for $target (install the Debian test-data packages: bash scripts/setup.sh)" >&2; exit 2; }

@@ -276,7 +276,7 @@ TEST(BatchBake, MaxMemory) {
   r = cli::run({"bake", big, "--max-memory", "1G", "-o", (work / "two.gbake").string()}, work / "log3");
   EXPECT_EQ(r.exit_code, 0) << cli::describe(r);
   // Malformed values are usage errors.
-  for (const char* bad : {"-1", "12Q", "", "1e3"}) {
+  for (const char* bad : {"-1", "12Q", "", "1e3", "0", "999999999999999G", "5MB"}) {
     r = cli::run({"bake", small, "--max-memory", bad, "-o", (work / "x.gbake").string()}, work / "log4");
     EXPECT_EQ(r.exit_code, 2) << bad;
   }

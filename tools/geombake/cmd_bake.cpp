@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -138,7 +139,7 @@ bool parse_bytes(const std::string& text, uint64_t& bytes) {
   if (digits < text.size()) {
     const char unit = char(std::toupper(static_cast<unsigned char>(text[digits])));
     const int shift = unit == 'K' ? 10 : unit == 'M' ? 20 : unit == 'G' ? 30 : -1;
-    if (shift < 0) return false;
+    if (shift < 0 || v > (UINT64_MAX >> shift)) return false;
     v <<= shift;
   }
   bytes = v;
