@@ -54,6 +54,14 @@ const std::string kOpenscad = "/usr/share/openscad";
 const double kCpuLimit = 1.0 * cli::kSanitizerFactor;
 const long kRssLimitKb = long(512 * 1024 * (cli::kSanitizerFactor > 1 ? 2 : 1));
 
+// This process's scratch folder is removed when the process ends.
+struct ScratchCleanup {
+  ~ScratchCleanup() {
+    std::error_code ec;
+    fs::remove_all(fs::temp_directory_path() / ("geom_sweep_" + std::to_string(::getpid())), ec);
+  }
+} scratch_cleanup;
+
 fs::path scratch_root() {
   static fs::path dir = [] {
     fs::path d = fs::temp_directory_path() / ("geom_sweep_" + std::to_string(::getpid()));

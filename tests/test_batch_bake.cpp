@@ -40,6 +40,14 @@ const std::string kAssimp = "/usr/share/assimp/models";
 const std::string kMaps = "/usr/share/games/openarena/baseoa/pak1-maps.pk3";
 const std::string kPlayers = "/usr/share/games/openarena/baseoa/pak2-players.pk3";
 
+// This process's scratch folder is removed when the process ends.
+struct ScratchCleanup {
+  ~ScratchCleanup() {
+    std::error_code ec;
+    fs::remove_all(fs::temp_directory_path() / ("geom_batch_" + std::to_string(::getpid())), ec);
+  }
+} scratch_cleanup;
+
 fs::path scratch(const std::string& tag) {
   static const fs::path root = [] {
     fs::path d = fs::temp_directory_path() / ("geom_batch_" + std::to_string(::getpid()));
