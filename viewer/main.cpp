@@ -22,7 +22,7 @@
 namespace {
 
 const char* kUsage =
-    "Usage: geomview [FILE] [options]   (FILE: a baked .gbk container, or a mesh or scene file baked in\n"
+    "Usage: geomview [FILE] [options]   (FILE: a baked .gbake container, or a mesh or scene file baked in\n"
     "                                    process; the bundled default scene when absent)\n"
     "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform, or all\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"

@@ -78,6 +78,10 @@
 #include <stdexcept>
 
 #include "draco/compression/decode.h"
+#include "draco/compression/point_cloud/point_cloud_decoder.h"
+#include "draco/core/varint_decoding.h"
+#include "draco/metadata/geometry_metadata.h"
+#include "draco/metadata/metadata_decoder.h"
 #include "importers.h"
 
 namespace geom::detail {
@@ -748,14 +752,64 @@ void assemble(const std::vector<float>& positions, const std::vector<uint32_t>& 
   d.triangles = true;
 }
 
+// Draco (Debian's 1.5.5) allocates, and fills, the face and vertex counts its
+// connectivity header declares before it reads the data they need: 325 bytes
+// claiming 808 million faces took 19 GB and 46 s (found by fuzz/fuzz_draco).
+// So the counts are read here first, as Draco reads them (header, metadata,
+// then sequential: faces, points; Edgebreaker: traversal type, [new vertices
+// before 2.2], vertices, faces; u32 before 2.0, varints after), and each must
+// fit the stream: real streams hold under one face per byte (0.02 to 0.6 in
+// google/draco's test data), so over kMaxDracoCountPerByte per byte is refused.
+// Returns "" when the counts fit or are not a mesh's (Draco refuses those itself).
+constexpr uint64_t kMaxDracoCountPerByte = 64;
+std::string draco_counts_problem(const unsigned char* data, size_t size) {
+  draco::DecoderBuffer buffer;
+  buffer.Init(reinterpret_cast<const char*>(data), size);
+  draco::DracoHeader header;
+  if (!draco::PointCloudDecoder::DecodeHeader(&buffer, &header).ok()) return "";
+  if (header.encoder_type != draco::TRIANGULAR_MESH) return "";
+  const uint16_t version = uint16_t(header.version_major << 8 | header.version_minor);
+  buffer.set_bitstream_version(version);
+  if (header.flags & METADATA_FLAG_MASK) {
+    draco::GeometryMetadata metadata;
+    if (!draco::MetadataDecoder().DecodeGeometryMetadata(&buffer, &metadata)) return "";
+  }
+  auto count = [&](uint32_t& v) {
+    return version < 0x200 ? buffer.Decode(&v) : draco::DecodeVarint<uint32_t>(&v, &buffer);
+  };
+  uint32_t faces = 0, vertices = 0;
+  if (header.encoder_method == draco::MESH_SEQUENTIAL_ENCODING) {
+    if (version < 0x202 ? !(buffer.Decode(&faces) && buffer.Decode(&vertices))
+                        : !(draco::DecodeVarint<uint32_t>(&faces, &buffer) &&
+                            draco::DecodeVarint<uint32_t>(&vertices, &buffer)))
+      return "";
+  } else if (header.encoder_method == draco::MESH_EDGEBREAKER_ENCODING) {
+    uint8_t traversal = 0;
+    uint32_t new_vertices = 0;
+    if (!buffer.Decode(&traversal) || (version < 0x202 && !buffer.Decode(&new_vertices)) || !count(vertices) ||
+        !count(faces))
+      return "";
+  } else {
+    return "";
+  }
+  const uint64_t limit = kMaxDracoCountPerByte * uint64_t(size);
+  if (faces > limit || vertices > limit)
+    return "the Draco stream claims " + std::to_string(faces) + " faces and " + std::to_string(vertices) +
+           " vertices in " + std::to_string(size) + " bytes (at most " + std::to_string(kMaxDracoCountPerByte) +
+           " per byte)";
+  return "";
+}
+
 void decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& prim, const DracoRef& ref,
                   const std::string& what, Decoded& d) {
   check_range(model, what + " (KHR_draco_mesh_compression)", ref.buffer_view, 0, 1, 0, 0);
   const tinygltf::BufferView& view = model.bufferViews[size_t(ref.buffer_view)];
   if (ref.position_id < 0) refuse(what + ": KHR_draco_mesh_compression has no POSITION attribute");
+  const unsigned char* bytes = model.buffers[size_t(view.buffer)].data.data() + view.byteOffset;
+  if (std::string problem = draco_counts_problem(bytes, view.byteLength); !problem.empty())
+    refuse(what + ": " + problem);
   draco::DecoderBuffer buffer;
-  buffer.Init(reinterpret_cast<const char*>(model.buffers[size_t(view.buffer)].data.data() + view.byteOffset),
-              view.byteLength);
+  buffer.Init(reinterpret_cast<const char*>(bytes), view.byteLength);
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok())
@@ -766,6 +820,11 @@ void decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& prim,
   if (!att) refuse(what + ": the Draco data has no attribute with id " + std::to_string(ref.position_id) + " (POSITION)");
   if (att->num_components() != 3)
     refuse(what + ": the Draco POSITION attribute has " + std::to_string(att->num_components()) + " components");
+  // Numbers only: reading a DT_BOOL attribute converts bytes other than 0 and 1
+  // through a bool, which is undefined behaviour (found by fuzz/fuzz_draco).
+  if (att->data_type() < draco::DT_INT8 || att->data_type() > draco::DT_FLOAT64)
+    refuse(what + ": the Draco POSITION attribute has data type " + std::to_string(int(att->data_type())) +
+           ", not a number type");
   // A quantized (integer) position accessor describes the decoded values: apply
   // its normalisation when Draco's attribute does not say so itself.
   double scale = 1.0;

@@ -3,12 +3,32 @@
 // in parallel (-j); each output is a pure function of its input and the flags,
 // whatever the thread count. A failed input prints `Error: FILE: ...`, leaves no
 // output file, and makes the exit status 1 while the other inputs still get baked.
+//
+// At pipeline scale (issue 8): inputs also come from list files (--list); a
+// progress line shows on stderr when it is a terminal; a summary ends a run of
+// several inputs; --depfile names each output's inputs (a glTF's external
+// buffers and an archive member's archive included). Limits per input:
+//   --max-triangles N  the import refuses more triangles;
+//   --max-memory N     the file's size and what the importer would allocate
+//                      (ImportOptions::max_bytes), then the bake's own estimate
+//                      (kBakeBytesPerTriangle, measured) must fit in N bytes;
+//   --timeout S        an input that takes longer than S seconds is refused. A
+//                      watchdog (the main thread) gives up on it at once: its
+//                      worker is replaced so the others go on, and it never
+//                      writes its output. Such a worker cannot be interrupted,
+//                      so once everything else is reported the process ends
+//                      with _Exit instead of waiting for it.
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -51,7 +71,11 @@ const char* kBakeHelp =
     "  --coplanar-degrees D  normals closer than D degrees make a coplanar edge (default 0.01)\n"
     "  --patch-level N     Bezier patch tessellation of Quake 3 maps (default 4)\n"
     "  --md3-frame N       MD3 frame to import (default 0)\n"
-    "  --max-triangles N   refuse inputs with more triangles\n";
+    "  --max-triangles N   refuse inputs with more triangles\n"
+    "  --max-memory N      refuse inputs that would need more than N bytes (suffix K, M or G)\n"
+    "  --timeout S         refuse inputs that take longer than S seconds (the others go on)\n"
+    "  --list FILE         more inputs, one per line (blank lines and # comments skipped)\n"
+    "  A progress line shows on stderr when it is a terminal; several inputs end with a summary.\n";
 
 constexpr const char* kExtension = ".gbake";
 
@@ -70,6 +94,94 @@ std::string dependency_of(const std::string& input) {
     if (at != std::string::npos) return input.substr(0, at + 4);
   }
   return input;
+}
+
+// Every file an input was made from: the input (or its archive) and, for a
+// .gltf, the external buffers its JSON names (percent-decoded, relative to it;
+// images are never read, so they are no dependency).
+std::vector<std::string> dependencies_of(const std::string& input) {
+  std::vector<std::string> deps = {dependency_of(input)};
+  const size_t dot = input.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : input.substr(dot);
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".gltf" || deps[0] != input) return deps;
+  std::ifstream f(input, std::ios::binary);
+  const nlohmann::json doc = nlohmann::json::parse(f, nullptr, false);
+  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return deps;
+  const size_t slash = input.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : input.substr(0, slash + 1);
+  for (const auto& b : doc["buffers"]) {
+    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+    const std::string uri = b["uri"].get<std::string>();
+    if (uri.rfind("data:", 0) == 0) continue;
+    std::string path;
+    for (size_t i = 0; i < uri.size(); ++i) {
+      if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+          std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+        path += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+        i += 2;
+      } else {
+        path += uri[i];
+      }
+    }
+    path = dir + path;
+    if (std::find(deps.begin(), deps.end(), path) == deps.end()) deps.push_back(path);
+  }
+  return deps;
+}
+
+// "1048576", "64K", "300M", "2G" -> bytes; false on anything else.
+bool parse_bytes(const std::string& text, uint64_t& bytes) {
+  size_t digits = 0;
+  while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+  if (digits == 0 || digits > 15 || text.size() > digits + 1) return false;
+  uint64_t v = std::stoull(text.substr(0, digits));
+  if (digits < text.size()) {
+    const char unit = char(std::toupper(static_cast<unsigned char>(text[digits])));
+    const int shift = unit == 'K' ? 10 : unit == 'M' ? 20 : unit == 'G' ? 30 : -1;
+    if (shift < 0 || v > (UINT64_MAX >> shift)) return false;
+    v <<= shift;
+  }
+  bytes = v;
+  return true;
+}
+
+// What baking one triangle costs at the peak, beyond the imported scene: the
+// weld, the topology's edge table, the planes, the ESM quads, the volume, the
+// adjacency, their sections and the serialized file. Measured (peak RSS of
+// `geombake bake -j 1` less the 12 MB of an empty run, over the triangles, the
+// import included): 2CylinderEngine.glb (121,496 triangles) 550 B, OpenArena's
+// oa_ctf2 (19,193) 370 B; rounded up with a margin. The process's own ~12 MB
+// is not counted.
+constexpr uint64_t kBakeBytesPerTriangle = 1024;
+
+// Reads a list file's inputs; false (after an `Error:` line) if it cannot be read.
+bool read_list(const std::string& path, std::vector<std::string>& inputs) {
+  std::ifstream f(path);
+  if (!f) {
+    std::fprintf(stderr, "Error: %s: cannot read the list file\n", path.c_str());
+    return false;
+  }
+  for (std::string line; std::getline(f, line);) {
+    const size_t a = line.find_first_not_of(" \t\r"), b = line.find_last_not_of(" \t\r");
+    if (a == std::string::npos || line[a] == '#') continue;
+    inputs.push_back(line.substr(a, b - a + 1));
+  }
+  return true;
+}
+
+// The non-fatal geometry problems of a baked input, as one warning ("" if none).
+std::string geometry_warning(const std::string& input, const geom::TopologyStats& t) {
+  std::string w;
+  auto add = [&](uint64_t n, const char* what) {
+    if (n) w += (w.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+  };
+  add(t.collapsed_triangles, "collapsed triangles");
+  add(t.zero_area_triangles, "zero-area triangles");
+  add(t.non_manifold_edges, "non-manifold edges");
+  add(t.inconsistent_edges, "edges with inconsistent winding");
+  add(t.duplicate_triangles, "duplicate triangles");
+  return w.empty() ? w : input + ": " + w + " (baked; counted in the report)";
 }
 
 std::string make_escape(const std::string& path) {
@@ -114,14 +226,75 @@ struct Job {
   geom::BakeResult result;           // without its sections' bytes once written
   std::vector<SectionInfo> sections;
   bool done = false;
+  // Watchdog state (--timeout): kPending -> kRunning -> kWriting -> kFinished,
+  // or kRunning -> kTimedOut (set by the watchdog: the worker's result is dropped).
+  std::atomic<int> state{0};
+  std::atomic<int64_t> started_ns{0};  // steady clock, when state became kRunning
+  size_t worker = 0;                    // the worker thread that runs it
 };
+enum { kPending, kRunning, kWriting, kFinished, kTimedOut };
+
+int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string seconds_text(double s) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", s);
+  return b;
+}
+
+// One input, start to end: import (within the limits), the memory estimate,
+// the bake, then the write, which happens only if the watchdog has not given
+// up on the job (kRunning -> kWriting) and the time limit still holds.
+struct Outcome {
+  geom::BakeResult result;
+  std::string error;
+  std::vector<SectionInfo> sections;
+};
+Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportOptions& import_options,
+                 uint64_t max_memory, double timeout) {
+  Outcome o;
+  geom::ImportResult imported = geom::import_file(job.input, import_options);
+  if (!imported.ok) {
+    o.error = imported.error;
+    return o;
+  }
+  if (max_memory) {
+    const uint64_t need = uint64_t(imported.scene.triangle_count()) * kBakeBytesPerTriangle;
+    if (need > max_memory) {
+      o.error = job.input + ": baking " + std::to_string(imported.scene.triangle_count()) + " triangles needs about " +
+                std::to_string(need) + " bytes, over the limit of " + std::to_string(max_memory) + " (--max-memory)";
+      return o;
+    }
+  }
+  o.result = geom::bake_scene(imported.scene, job.input, options);
+  imported = geom::ImportResult();
+  if (!o.result.ok) {
+    o.error = o.result.error;
+    return o;
+  }
+  int expected = kRunning;
+  if (timeout > 0 && double(now_ns() - job.started_ns.load()) * 1e-9 > timeout) return o;  // the caller times it out
+  if (!job.state.compare_exchange_strong(expected, kWriting)) return o;  // given up on: write nothing
+  std::string error;
+  if (!geom::write_baked(job.output, o.result.sections, error)) {
+    o.result.ok = false;
+    o.error = job.input + ": cannot write " + job.output + ": " + error;
+  }
+  for (const auto& sec : o.result.sections) o.sections.push_back(info_of(sec));
+  std::vector<geom::BakedSection>().swap(o.result.sections);
+  return o;
+}
+
 
 int run_bake(const std::vector<std::string>& argv) {
   Args args(argv,
             {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
              "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights", "--one-sided-closed"},
             {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
-             "--md3-frame", "--max-triangles"});
+             "--md3-frame", "--max-triangles", "--max-memory", "--timeout", "--list"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kBakeHelp, stdout);
     return 0;
@@ -133,12 +306,23 @@ int run_bake(const std::vector<std::string>& argv) {
   geom::ImportOptions import_options;
   geom::BakeOptions options;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  double timeout = 0;
   if (!parse_number(args, "--weld-tolerance", options.weld_tolerance) ||
       !parse_number(args, "--coplanar-degrees", options.planes.coplanar_degrees) ||
       !parse_number(args, "--patch-level", import_options.patch_level) ||
       !parse_number(args, "--md3-frame", import_options.md3_frame) ||
-      !parse_number(args, "--max-triangles", import_options.max_triangles) || !parse_number(args, "-j", threads))
+      !parse_number(args, "--max-triangles", import_options.max_triangles) || !parse_number(args, "-j", threads) ||
+      !parse_number(args, "--timeout", timeout))
     return 2;
+  uint64_t max_memory = 0;
+  if (args.has("--max-memory")) {
+    if (!parse_bytes(args.get("--max-memory"), max_memory) || max_memory == 0) {
+      std::fprintf(stderr, "Error: option --max-memory: '%s' is not a byte count (N, NK, NM or NG)\n",
+                   args.get("--max-memory").c_str());
+      return 2;
+    }
+    import_options.max_bytes = max_memory;
+  }
   options.positions = !args.has("--no-positions");
   options.indices = !args.has("--no-indices");
   options.weld_remap = !args.has("--no-remap");
@@ -160,8 +344,10 @@ int run_bake(const std::vector<std::string>& argv) {
     options.lights.push_back({l[0], l[1], l[2], l[3]});
   }
 
-  std::vector<std::string> inputs;
-  if (!expand_inputs(args.positional(), inputs)) return 2;
+  std::vector<std::string> inputs, named = args.positional();
+  for (const std::string& list : args.all("--list"))
+    if (!read_list(list, named)) return 2;
+  if (!expand_inputs(named, inputs)) return 2;
   if (inputs.empty()) {
     std::fprintf(stderr, "Error: no input file\n%s", kBakeHelp);
     return 2;
@@ -193,34 +379,69 @@ int run_bake(const std::vector<std::string>& argv) {
     if (!fresh) job.error = job.input + ": its output " + job.output + " is also the output of " + inputs[it->second];
   }
 
-  // Bake in parallel; each job writes only its own slot.
-  std::atomic<size_t> next{0}, finished{0};
-  std::mutex progress_mutex;
+  // Bake in parallel; each job writes only its own slot. The main thread is
+  // the watchdog: it gives up on jobs over --timeout and starts a worker in
+  // place of each one it gives up on.
+  const auto t0 = std::chrono::steady_clock::now();
+  std::atomic<size_t> next{0};
+  size_t finished = 0, timed_out = 0;  // under `mutex`
+  std::mutex mutex;
+  std::condition_variable changed;
   const bool progress = ::isatty(2) && jobs.size() > 1;
-  auto worker = [&] {
+  auto show_progress = [&](const Job& job) {  // under `mutex`
+    if (!progress) return;
+    std::fprintf(stderr, "\r\033[K[%zu/%zu] %s", finished, jobs.size(), job.input.c_str());
+    if (finished == jobs.size()) std::fputs("\r\033[K", stderr);
+    std::fflush(stderr);
+  };
+  auto worker = [&](size_t self) {
     for (size_t i; (i = next++) < jobs.size();) {
       Job& job = jobs[i];
+      Outcome o;
       if (job.error.empty()) {
-        job.result = geom::bake_file(job.input, job.output, options, import_options);
-        job.done = job.result.ok;
-        if (!job.result.ok) job.error = job.result.error;
-        for (const auto& sec : job.result.sections) job.sections.push_back(info_of(sec));
-        std::vector<geom::BakedSection>().swap(job.result.sections);
+        job.worker = self;
+        job.started_ns = now_ns();
+        job.state = kRunning;
+        o = bake_one(job, options, import_options, max_memory, timeout);
       }
-      size_t n = ++finished;
-      if (progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        std::fprintf(stderr, "\r\033[K[%zu/%zu] %s", n, jobs.size(), job.input.c_str());
-        if (n == jobs.size()) std::fputs("\r\033[K", stderr);
-        std::fflush(stderr);
-      }
+      std::lock_guard<std::mutex> lock(mutex);
+      if (job.state == kTimedOut) return;  // given up on: a new worker took this one's place
+      if (job.state == kRunning && timeout > 0 && double(now_ns() - job.started_ns) * 1e-9 > timeout && o.error.empty())
+        o.error = job.input + ": timed out after " + seconds_text(timeout) + " s (--timeout)";
+      job.state = kFinished;
+      job.result = std::move(o.result);
+      job.sections = std::move(o.sections);
+      if (job.error.empty()) job.error = o.error;
+      job.done = job.error.empty() && job.result.ok;
+      ++finished;
+      show_progress(job);
+      changed.notify_all();
     }
   };
   threads = unsigned(std::min<size_t>(std::max(1u, threads), jobs.size()));
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  std::vector<bool> stuck;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker, size_t(t)), stuck.push_back(false);
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (finished < jobs.size()) {
+      changed.wait_for(lock, std::chrono::milliseconds(timeout > 0 ? 10 : 200));
+      if (timeout <= 0) continue;
+      const int64_t now = now_ns();
+      for (Job& job : jobs) {
+        int expected = kRunning;
+        if (job.state != kRunning || double(now - job.started_ns) * 1e-9 <= timeout ||
+            !job.state.compare_exchange_strong(expected, kTimedOut))
+          continue;
+        job.error = job.input + ": timed out after " + seconds_text(timeout) + " s (--timeout)";
+        ++finished, ++timed_out;
+        show_progress(job);
+        stuck[job.worker] = true;
+        if (next < jobs.size()) pool.emplace_back(worker, pool.size()), stuck.push_back(false);
+      }
+    }
+  }
+  for (size_t t = 0; t < pool.size(); ++t) stuck[t] ? pool[t].detach() : pool[t].join();
 
   // Report in input order.
   int failed = 0;
@@ -230,9 +451,14 @@ int run_bake(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "Error: %s\n", job.error.c_str());
       ++failed;
     } else {
-      depfile += make_escape(job.output) + ": " + make_escape(dependency_of(job.input)) + "\n";
-      if (!args.has("--json"))
+      depfile += make_escape(job.output) + ":";
+      for (const std::string& d : dependencies_of(job.input)) depfile += " " + make_escape(d);
+      depfile += "\n";
+      if (!args.has("--json")) {
         for (const std::string& w : job.result.report.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+        const std::string g = geometry_warning(job.input, job.result.report.stats);
+        if (!g.empty()) std::fprintf(stderr, "Warning: %s\n", g.c_str());
+      }
     }
     if (args.has("--json")) {
       nlohmann::ordered_json j = {{"input", job.input}, {"output", job.output}, {"ok", job.done}};
@@ -276,14 +502,27 @@ int run_bake(const std::vector<std::string>& argv) {
       std::fputs(geom::report_text(job.result.report).c_str(), stdout);
     }
   }
+  int status = failed ? 1 : 0;
   if (args.has("--depfile")) {
     std::string error;
     if (!geom::write_file_atomically(args.get("--depfile"), depfile, error)) {
       std::fprintf(stderr, "Error: %s\n", error.c_str());
-      return 1;
+      status = 1;
     }
   }
-  return failed ? 1 : 0;
+  if (jobs.size() > 1 || args.has("-v")) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "geombake bake: %zu baked, %d failed of %zu inputs", jobs.size() - size_t(failed), failed,
+                 jobs.size());
+    if (timed_out) std::fprintf(stderr, " (%zu timed out)", timed_out);
+    std::fprintf(stderr, " in %.2f s with %u threads\n", seconds, threads);
+  }
+  if (timed_out) {  // workers still busy with abandoned inputs cannot be joined: end now
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(status);
+  }
+  return status;
 }
 
 GEOMBAKE_COMMAND("bake", "write the baked GPU buffers of each input (-o FILE or DIR)", run_bake);
