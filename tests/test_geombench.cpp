@@ -184,6 +184,7 @@ TEST(GeombenchQuick, WritesTableCsvJsonSvg) {
   for (const auto& s : per_scene) EXPECT_NE(svg.find(">" + s.first + "</text>"), std::string::npos) << s.first;
   EXPECT_NE(svg.find("<polyline"), std::string::npos);
   EXPECT_FALSE(slurp(dir + "/summary.md").empty());
+  if (!HasFailure()) EXPECT_EQ(std::system(("rm -rf '" + dir + "'").c_str()), 0);  // kept on failure, to look at
 }
 
 TEST(GeombenchQuick, BadUsageFailsCleanly) {
