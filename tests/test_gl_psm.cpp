@@ -14,7 +14,8 @@
 //     lispsm agree with the reference on all but a small fraction of the
 //     certain pixels (away from true boundaries), and are no worse than
 //     uniform at the same map size by more than that fraction;
-//   - the same for random suns over the default scene;
+//   - the same for random suns over the default scene (none grazing the wall:
+//     there every map, uniform too, has acne that no bias removes);
 //   - a lone plane, and a plane with a wall standing on it, seen at a grazing
 //     angle, under random suns: no pixel of acne where the reference is sure.
 #include "test_gl_common.h"
@@ -57,7 +58,9 @@ geom::Scene default_scene() {
 }
 
 // The reported setup: geomview --technique psm,lispsm,uniform --light 0.3,1,0.6,0
-// (default camera), at its default 640 x 480 with its default 1024 map.
+// (default camera), at its default 640 x 480, with maps of 512, 1024 (the
+// default) and 2048 texels. Before the fix psm's error at 1024 was 0.129% of the
+// certain pixels (lispsm 0.037%) against uniform's 0.014%.
 TEST(GlPsm, DefaultSceneUnderTheReportedSunHasNoAcneNorLostShadows) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = default_scene();
@@ -65,13 +68,17 @@ TEST(GlPsm, DefaultSceneUnderTheReportedSunHasNoAcneNorLostShadows) {
   auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
   const viewer::View view = viewer::default_view(*state, 640, 480);
-  const Errors e = focused_errors(*state, scene, view, sun({0.3f, 1.0f, 0.6f}), 1024, "reported sun");
-  for (int i = 1; i < 3; ++i) {
-    SCOPED_TRACE(viewer::technique_name(kFocused[i]));
-    EXPECT_LT(e.by_technique[i], 0.003);  // a few texel-staircase pixels; the bug cost 2-6%
-    EXPECT_LE(e.by_technique[i], e.by_technique[0] + 0.002);
+  for (int map_size : {512, 1024, 2048}) {
+    const std::string what = "reported sun, map " + std::to_string(map_size);
+    SCOPED_TRACE(what);
+    const Errors e = focused_errors(*state, scene, view, sun({0.3f, 1.0f, 0.6f}), map_size, what.c_str());
+    for (int i = 1; i < 3; ++i) {
+      SCOPED_TRACE(viewer::technique_name(kFocused[i]));
+      EXPECT_LT(e.by_technique[i], 0.001);  // a few texel-staircase pixels
+      EXPECT_LE(e.by_technique[i], e.by_technique[0] + 0.0005);
+    }
+    EXPECT_LT(e.by_technique[0], 0.001);
   }
-  EXPECT_LT(e.by_technique[0], 0.003);
 }
 
 TEST(GlPsm, DefaultSceneUnderRandomSuns) {
@@ -83,8 +90,12 @@ TEST(GlPsm, DefaultSceneUnderRandomSuns) {
   const viewer::View view = viewer::default_view(*state, 200, 150);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1, 1), up(0.25f, 1);
-  for (int k = 0; k < 6; ++k) {
+  for (int k = 0; k < 6;) {
     const glm::vec3 d(u(rng), up(rng), u(rng));
+    // The wall faces +z: a sun within 10 degrees of its plane grazes it, where
+    // every shadow map (uniform too) has acne the bias cannot remove.
+    if (std::fabs(d.z) < 0.17f * glm::length(d)) continue;
+    ++k;
     const std::string what = "sun (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ", " + std::to_string(d.z) + ")";
     SCOPED_TRACE(what);
     const Errors e = focused_errors(*state, scene, view, sun(d), 1024, what.c_str());
