@@ -722,7 +722,7 @@ bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, float slope, P
   glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
   glViewport(0, 0, n, n);
   glClear(GL_DEPTH_BUFFER_BIT);
-  if (linear_light) glEnable(GL_DEPTH_CLAMP);
+  if (linear_light) glEnable(GL_DEPTH_CLAMP);  // casters before the warp's near plane still occlude: the depth written is linear
   if (!linear_light) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
