@@ -15,6 +15,6 @@ uniform vec4 u_light;        // homogeneous, local frame (as in shade.frag)
 uniform vec2 u_depth_range;
 
 float light_depth(vec3 p) {
-  const float s = u_light.w == 0.0 ? -dot(p, normalize(u_light.xyz)) : distance(p, u_light.xyz);
+  const float s = u_light.w == 0.0 ? -dot(p, u_light.xyz) / max(length(u_light.xyz), 1e-30) : distance(p, u_light.xyz);
   return (s - u_depth_range.x) * u_depth_range.y;
 }

@@ -689,7 +689,8 @@ glm::vec2 light_depth_range(const State& s, const LightSetup& light) {
   const double r = std::max(double(s.bounds.w), 1e-6) * 1.01;
   double lo = 0, hi = 0;
   if (light.position.w == 0) {
-    const double m = -glm::dot(c, glm::normalize(glm::dvec3(glm::vec3(light.position))));
+    const glm::dvec3 towards(glm::vec3(light.position));
+    const double m = -glm::dot(c, towards) / std::max(glm::length(towards), 1e-300);  // a zero direction: finite
     lo = m - r, hi = m + r;
   } else {
     const double d = glm::length(c - glm::dvec3(glm::vec3(local_light(s, light))));
