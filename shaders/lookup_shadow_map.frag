@@ -1,6 +1,6 @@
 #version 450 core
-// Lookup of a 2D shadow map (ssm, pcf, and the focused maps psm / lispsm /
-// uniform, which differ only in u_light_matrix).
+// Lookup of a 2D shadow map (ssm, pcf; the focused maps psm / lispsm / uniform
+// use lookup_focused.frag, whose depth is linear).
 // The map holds light-space depth written with a slope-scaled depth bias
 // (glPolygonOffset; 001 Sect. 1.2, 004 "Shadow mapping"), compared in hardware
 // (sampler2DShadow, GL_LEQUAL). u_pcf = 0: one nearest-texel comparison (simple

@@ -6,7 +6,8 @@
 //   extended shadow map (000) .................. shaders/esm_quad.vert, esm_edges.frag, lookup_esm.frag
 //   stencil shadow volumes (004, 001 Sect. 5) .. shaders/shadow_volume.vert, volume.frag
 //   perspective (002), light-space perspective and uniform focused shadow maps:
-//   the light matrix of geom/focus.h (per frame), then the simple map's passes
+//   the light matrix of geom/focus.h (per frame) for the map's x, y, and a
+//   linear light depth with its own bias ...... shaders/light_depth.frag, depth_linear.frag, lookup_focused.frag
 // The silhouette buffers come from geom/silhouette.h, baked once per caster
 // (the triangles of one glTF mesh instance, or of the whole file when it has
 // no such notion), so that shadow volumes choose depth-pass or depth-fail per
@@ -287,6 +288,7 @@ void set(GLuint p, const char* name, const glm::mat4& m) {
   glProgramUniformMatrix4fv(p, glGetUniformLocation(p, name), 1, GL_FALSE, glm::value_ptr(m));
 }
 void set(GLuint p, const char* name, const glm::vec4& v) { glProgramUniform4fv(p, glGetUniformLocation(p, name), 1, glm::value_ptr(v)); }
+void set(GLuint p, const char* name, const glm::vec2& v) { glProgramUniform2fv(p, glGetUniformLocation(p, name), 1, glm::value_ptr(v)); }
 void set(GLuint p, const char* name, const glm::vec3& v) { glProgramUniform3fv(p, glGetUniformLocation(p, name), 1, glm::value_ptr(v)); }
 void set(GLuint p, const char* name, float v) { glProgramUniform1f(p, glGetUniformLocation(p, name), v); }
 void set(GLuint p, const char* name, int v) { glProgramUniform1i(p, glGetUniformLocation(p, name), v); }
@@ -675,24 +677,61 @@ bool camera_may_be_in_volume(const Caster& c, const glm::vec3& eye, float radius
   return true;
 }
 
+// The light as shade.frag's u_light: homogeneous, in the scene buffer's local frame.
+glm::vec4 local_light(const State& s, const LightSetup& light) {
+  return glm::vec4(glm::dvec3(light.position) - s.origin * double(light.position.w), light.position.w);
+}
+
+// u_depth_range of shaders/light_depth.frag: the linear light depth of the
+// focused maps spans the scene's bounding sphere (1% margin) along the light's rays.
+glm::vec2 light_depth_range(const State& s, const LightSetup& light) {
+  const glm::dvec3 c = glm::dvec3(glm::vec3(s.bounds)) - s.origin;
+  const double r = std::max(double(s.bounds.w), 1e-6) * 1.01;
+  double lo = 0, hi = 0;
+  if (light.position.w == 0) {
+    const glm::dvec3 towards(glm::vec3(light.position));
+    const double m = -glm::dot(c, towards) / std::max(glm::length(towards), 1e-300);  // a zero direction: finite
+    lo = m - r, hi = m + r;
+  } else {
+    const double d = glm::length(c - glm::dvec3(glm::vec3(local_light(s, light))));
+    lo = std::max(0.0, d - r), hi = d + r;
+  }
+  return glm::vec2(float(lo), float(1.0 / (hi - lo)));
+}
+
 // A depth map from the light with slope-scaled bias: shared by ssm, pcf, esm,
-// edsm and the focused maps. `slope` is glPolygonOffset's factor: the depth
-// slope of one texel covers a lookup at the texel's own centre; a filter whose
-// taps reach k texels away needs about k + 1 of them.
-bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, float slope, PassTimer& timer, std::string& error) {
+// edsm and the focused maps. `slope` is the bias factor: the depth slope of one
+// texel covers a lookup at the texel's own centre; a filter whose taps reach k
+// texels away needs about k + 1 of them. With `linear_light` (the focused maps,
+// whose matrix warps depth) the map stores the linear light depth of
+// shaders/light_depth.frag with the bias computed in it (depth_linear.frag);
+// otherwise the matrix's own depth with glPolygonOffset's bias.
+bool depth_map_pass(State& s, const glm::mat4& light_clip, int n, float slope, PassTimer& timer, std::string& error,
+                    const LightSetup* linear_light = nullptr) {
   ensure_shadow_map(s, n);
-  GLuint p = program(s, {"depth.vert", "depth.frag"}, error);
+  GLuint p = linear_light ? program(s, {"depth.vert", "depth_linear.frag", "light_depth.frag"}, error)
+                          : program(s, {"depth.vert", "depth.frag"}, error);
   if (!p) return false;
   set(p, "u_matrix", at(glm::dmat4(light_clip), s.origin));
+  if (linear_light) {
+    set(p, "u_light", local_light(s, *linear_light));
+    set(p, "u_depth_range", light_depth_range(s, *linear_light));
+    set(p, "u_bias_slope", slope);
+    set(p, "u_bias_constant", 1.0f / 65536.0f);  // about 3e-5 of the scene's diameter
+  }
   timer.begin("depth map");
   glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
   glViewport(0, 0, n, n);
   glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
+  if (linear_light) glEnable(GL_DEPTH_CLAMP);  // casters before the warp's near plane still occlude: the depth written is linear
+  if (!linear_light) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
+  }
   glUseProgram(p);
   draw_scene(s);
   glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_DEPTH_CLAMP);
   timer.end();
   return true;
 }
@@ -797,12 +836,14 @@ bool esm_pass(State& s, const LightFrame& frame, const LightSetup& light, int n,
 // The shared shading pass: scene.vert + shade.frag + the technique's lookup shader.
 GLuint shading_program(State& s, const std::string& lookup, const View& view, const glm::dmat4& view_proj,
                        const LightSetup& light, Output output, std::string& error) {
-  GLuint p = program(s, {"scene.vert", "shade.frag", lookup}, error);
+  std::vector<std::string> files = {"scene.vert", "shade.frag", lookup};
+  if (lookup == "lookup_focused.frag") files.push_back("light_depth.frag");  // its light_depth()
+  GLuint p = program(s, files, error);
   if (!p) return 0;
   set(p, "u_view_proj", at(view_proj, s.origin));
   set(p, "u_view", at(glm::lookAt(glm::dvec3(view.eye), glm::dvec3(view.target), glm::dvec3(view.up)), s.origin));
   set(p, "u_far", view.far_plane);
-  set(p, "u_light", glm::vec4(glm::dvec3(light.position) - s.origin * double(light.position.w), light.position.w));
+  set(p, "u_light", local_light(s, light));
   set(p, "u_spot_direction", glm::normalize(light.spot_direction));
   set(p, "u_spot_cos", light.spot && light.position.w != 0 ? std::cos(glm::radians(light.spot_angle_deg)) : -2.0f);
   set(p, "u_output", output == Output::Mask ? 1 : 0);
@@ -1037,7 +1078,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
       frame = light_frame(s, light);
       if (focused) frame.proj = to_mat4(focus_result.matrix), frame.view = glm::mat4(1);
       const float slope = t == Technique::Pcf ? 3.5f : focused ? 3.0f : 1.5f;  // pcf: taps 1 texel away, bilinear: 2
-      if (!depth_map_pass(s, frame.clip(), n, slope, timer, error)) return false;
+      if (!depth_map_pass(s, frame.clip(), n, slope, timer, error, focused ? &light : nullptr)) return false;
       if (t == Technique::Edsm && !edsm_pass(s, frame.clip(), n, timer, error)) return false;
       if (t == Technique::Esm && !esm_pass(s, frame, light, n, timer, error)) return false;
       const GLint filter = t == Technique::Ssm ? GL_NEAREST : GL_LINEAR;
@@ -1046,6 +1087,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
       shadow_texture = s.shadow_map.depth;
       second_texture = t == Technique::Edsm || t == Technique::Esm ? GLuint(s.edge_map.color) : 0;
       lookup = t == Technique::Edsm ? "lookup_edsm.frag" : t == Technique::Esm ? "lookup_esm.frag" : "lookup_shadow_map.frag";
+      if (focused) lookup = "lookup_focused.frag";
       break;
     }
     case Technique::Cube: {
@@ -1093,6 +1135,7 @@ bool draw_frame(State& s, const View& view, const LightSetup& light, const Frame
   GLuint p = shading_program(s, lookup, view, view_proj, light, fs.output, error);
   if (!p) return false;
   set(p, "u_light_matrix", at(glm::dmat4(frame.clip()), s.origin));
+  if (lookup == "lookup_focused.frag") set(p, "u_depth_range", light_depth_range(s, light));
   set(p, "u_shadow_map", 0);
   set(p, "u_distance_map", 1);
   set(p, "u_edge_map", 1);
