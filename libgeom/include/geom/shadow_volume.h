@@ -16,14 +16,15 @@
 // weight, and the volume is the sum of these oriented closed surfaces:
 //   count(P) = sum over faces f of w(f) [P in F(f)],  w(f) in {0, 1}.
 // Since all weights are >= 0, count(P) > 0 only if some face blocks P from L.
-//   * Double-sided faces (the default, every face): w(f) = 1 for any light.
+//   * Double-sided faces (the default, every face): w(f) = 1 for any light
+//     off the face's plane (on it, below).
 //     F(f) is oriented by f's facing: f as is when L is in front of its plane,
 //     f flipped when behind. count(P) = the number of faces crossed by the
 //     segment PL: non-zero exactly when blocked, for any mesh and any light.
 //   * One-sided faces (ShadowVolumeOptions::one_sided_closed, only for faces of
 //     a closed component: every edge has exactly two non-degenerate faces
 //     traversing it in opposite directions): w(f) = 1 when L is in front, 0
-//     when behind. A segment from a light OUTSIDE the solid first enters it
+//     when behind or on its plane. A segment from a light OUTSIDE the solid first enters it
 //     through a face whose front sees L, so count(P) > 0 exactly when the
 //     component blocks P: the classic volume, half the fill and memory. The
 //     caller promises the light never enters such a solid; a light inside one
