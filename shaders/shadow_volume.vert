@@ -34,16 +34,25 @@ uniform bool u_caps;
 uniform samplerBuffer u_planes;
 
 const uint kFlag = 0x80000000u;
-// Direction of a corner that lies on the light itself (no direction of its own).
+// Direction of a corner that lies on the light itself (no direction of its own);
+// a guard: every record through a vertex at the light collapses (faces on the light).
 const vec3 kAtLight = vec3(0.0, 0.0, -1.0);
 
-bool light_in_front(uint index) {
+// +1 light in front of the plane, 0 on it (within kOnLight of the terms' scale),
+// -1 behind; geom::light_side in geom/shadow_volume.h.
+const float kOnLight = 2e-6;
+int light_side(uint index) {
   vec4 p = texelFetch(u_planes, int(index & 0x7fffffffu));
   precise float s = p.x * u_light.x;
   s = s + p.y * u_light.y;
   s = s + p.z * u_light.z;
   s = s + p.w * u_light.w;
-  return s > 0.0;
+  precise float m = abs(p.x * u_light.x);
+  m = m + abs(p.y * u_light.y);
+  m = m + abs(p.z * u_light.z);
+  m = m + abs(p.w * u_light.w);
+  m = m * kOnLight;
+  return s > m ? 1 : (s < -m ? -1 : 0);
 }
 
 vec4 far_corner(vec3 v) {
@@ -56,8 +65,14 @@ void main() {
   int k = gl_VertexID;
   vec4 corner;
   if (!u_caps) {
-    bool fa = light_in_front(a_plane_a);
-    bool fb = light_in_front(a_plane_b) != ((a_plane_b & kFlag) != 0u);
+    // first copy and single records: front or not; second copy of a
+    // double-sided pair (kFlag in plane_a): behind or not (geom/shadow_volume.h)
+    int sa = light_side(a_plane_a);
+    int sb = light_side(a_plane_b);
+    if ((a_plane_b & kFlag) != 0u) sb = -sb;
+    bool second_copy = (a_plane_a & kFlag) != 0u;
+    bool fa = second_copy ? sa >= 0 : sa > 0;
+    bool fb = second_copy ? sb >= 0 : sb > 0;
     if (fa == fb) {
       corner = vec4(a_p0, 1.0);  // the whole instance collapses to one point
     } else {
@@ -67,9 +82,10 @@ void main() {
       corner = k < 2 ? vec4(v, 1.0) : far_corner(v);
     }
   } else {
-    bool front = light_in_front(a_plane_a);
+    int side = light_side(a_plane_a);
+    bool front = side > 0;
     bool double_sided = (a_plane_a & kFlag) != 0u;
-    if (!front && !double_sided) {
+    if (side == 0 || (!front && !double_sided)) {
       corner = vec4(a_p0, 1.0);
     } else {
       vec3 second = front ? a_p1 : a_p2;

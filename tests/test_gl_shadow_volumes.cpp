@@ -151,9 +151,8 @@ TEST(GlShadowVolumes, CameraInsideAVolume) {
 }
 
 // Hard cases (MISSION.md): coordinates far from the origin, the light behind
-// the viewer, the light in the plane of faces (grazing). (A light exactly at a
-// caster's vertex is not here: the volume's extrusion of that vertex has no
-// direction; see the report of the viewer branch.)
+// the viewer, the light in the plane of faces (grazing); the light exactly at
+// a caster's vertex and inside a caster's face (LightOnACaster below).
 TEST(GlShadowVolumes, HardCases) {
   ASSERT_NE(context(), nullptr);
   struct Setup {
@@ -184,6 +183,40 @@ TEST(GlShadowVolumes, HardCases) {
     for (Technique t : {Technique::Sv, Technique::SvZFail}) {
       const Comparison c = render_and_compare(*state, scene, setup.view, setup.light, t, 256);
       SCOPED_TRACE(std::string(setup.name) + " " + viewer::technique_name(t));
+      EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain << " certain pixels differ";
+      EXPECT_GT(c.lit + c.shadowed, 5000u);
+    }
+  }
+}
+
+// The light exactly at the top corner of the floating box, and inside one of
+// its top triangles: the faces through the light have flat frusta and
+// collapse (geom/shadow_volume.h), the rest matches the reference.
+TEST(GlShadowVolumes, LightOnACaster) {
+  ASSERT_NE(context(), nullptr);
+  const geom::Scene scene = closed_scene();
+  size_t top = 0;
+  for (size_t v = 0; v < scene.vertex_count(); ++v)
+    if (scene.positions[3 * v + 1] > scene.positions[3 * top + 1]) top = v;
+  size_t face = 0;  // a triangle through that corner
+  while (face + 1 < scene.triangle_count() && scene.indices[3 * face] != top && scene.indices[3 * face + 1] != top &&
+         scene.indices[3 * face + 2] != top)
+    ++face;
+  std::string error;
+  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  for (int where = 0; where < 2; ++where) {
+    viewer::LightSetup l;
+    glm::vec3 p(0);
+    for (int k = 0; k < 3; ++k)
+      p[k] = where == 0 ? scene.positions[3 * top + k]
+                        : (scene.positions[3 * scene.indices[3 * face] + k] +
+                           scene.positions[3 * scene.indices[3 * face + 1] + k] +
+                           scene.positions[3 * scene.indices[3 * face + 2] + k]) / 3;
+    l.position = glm::vec4(p, 1);
+    for (Technique t : {Technique::Sv, Technique::SvZFail}) {
+      const Comparison c = render_and_compare(*state, scene, view_from({4, 5, 8}, {0, 0.5f, 0}), l, t, 256);
+      SCOPED_TRACE(std::string(where == 0 ? "at a vertex " : "inside a face ") + viewer::technique_name(t));
       EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain << " certain pixels differ";
       EXPECT_GT(c.lit + c.shadowed, 5000u);
     }

@@ -183,9 +183,16 @@ TEST(GlSilhouetteShaders, MatchTheCpuReference) {
   int compared = 0;
   for (const fixtures::Mesh& m : {fixtures::stack(), fixtures::bowtie(), fixtures::degenerate_box()}) {
     const fixtures::Baked b = fixtures::bake(m);
-    for (int trial = 0; trial < 8; ++trial) {
+    for (int trial = 0; trial < 10; ++trial) {
       float light[4] = {float(2 * g(rng)), float(2 * g(rng)), float(2 * g(rng)), trial % 2 ? 0.0f : 1.0f};
       if (trial == 6) std::memcpy(light, b.volume.sides[0].p0, 12), light[3] = 1;  // at a vertex
+      if (trial >= 8) {  // inside a face (its centroid), on an edge: the faces on the light collapse
+        const geom::SvCap& c = b.volume.caps[0];
+        const geom::SvSide& e = b.volume.sides[0];
+        for (int k = 0; k < 3; ++k)
+          light[k] = trial == 8 ? (c.a[k] + c.b[k] + c.c[k]) / 3 : 0.25f * e.p0[k] + 0.75f * e.p1[k];
+        light[3] = 1;
+      }
       // Shadow volume: sides and caps, generic and per-light.
       const geom::ShadowVolume lv = geom::build_light_volume(b.volume, light);
       for (const geom::ShadowVolume* v : {&b.volume, &lv}) {

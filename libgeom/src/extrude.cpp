@@ -18,6 +18,10 @@ inline bool front_of(const float* planes, uint32_t index, const float light[4]) 
   return light_in_front(planes + 4 * size_t(index & 0x7fffffffu), light);
 }
 
+inline int side_of(const float* planes, uint32_t index, const float light[4]) {
+  return light_side(planes + 4 * size_t(index & 0x7fffffffu), light);
+}
+
 inline void near_corner(const float v[3], float out[4]) {
   out[0] = v[0];
   out[1] = v[1];
@@ -26,7 +30,8 @@ inline void near_corner(const float v[3], float out[4]) {
 }
 
 // v at infinity: (v * L.w - L.xyz, 0); a corner on the light itself has no
-// direction and goes to (0, 0, -1, 0) (see kAtLight in shaders/shadow_volume.vert).
+// direction and goes to (0, 0, -1, 0) (see kAtLight in shaders/shadow_volume.vert;
+// a guard: the records through a vertex at the light collapse).
 inline void far_corner(const float v[3], const float light[4], float out[4]) {
   out[0] = v[0] * light[3] - light[0];
   out[1] = v[1] * light[3] - light[1];
@@ -37,8 +42,11 @@ inline void far_corner(const float v[3], const float light[4], float out[4]) {
 
 // The shader's side instance; `base` receives each corner's vertex.
 bool side_eval(const SvSide& s, const float* planes, const float light[4], float out[4][4], const float* base[4]) {
-  const bool fa = front_of(planes, s.plane_a, light);
-  const bool fb = front_of(planes, s.plane_b, light) != bool(s.plane_b & SvSide::kFlip);
+  const int sa = side_of(planes, s.plane_a, light);
+  const int sb = (s.plane_b & SvSide::kFlip) ? -side_of(planes, s.plane_b, light) : side_of(planes, s.plane_b, light);
+  const bool second = s.plane_a & SvSide::kSecond;
+  const bool fa = second ? sa >= 0 : sa > 0;
+  const bool fb = second ? sb >= 0 : sb > 0;
   if (fa == fb) {
     for (int k = 0; k < 4; ++k) near_corner(s.p0, out[k]);
     return false;
@@ -55,9 +63,10 @@ bool side_eval(const SvSide& s, const float* planes, const float light[4], float
 }
 
 bool cap_eval(const SvCap& c, const float* planes, const float light[4], float out[6][4], const float* base[6]) {
-  const bool front = front_of(planes, c.plane, light);
+  const int side = side_of(planes, c.plane, light);
+  const bool front = side > 0;
   const bool ds = c.plane & SvCap::kDoubleSided;
-  if (!front && !ds) {
+  if (side == 0 || (!front && !ds)) {
     for (int k = 0; k < 6; ++k) near_corner(c.a, out[k]);
     return false;
   }

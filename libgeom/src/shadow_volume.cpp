@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace geom {
 namespace {
@@ -105,7 +104,8 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
       ++st.pair_edges;
       sv.sides.push_back(s);
       sv.side_component.push_back(component[fa]);
-      if (double_sided[fa]) {  // multiplicity 2
+      if (double_sided[fa]) {  // multiplicity up to 2: the second copy
+        s.plane_a |= SvSide::kSecond;
         sv.sides.push_back(s);
         sv.side_component.push_back(component[fa]);
       }
@@ -260,17 +260,17 @@ ShadowVolume build_light_volume(const ShadowVolume& generic, const float light[4
   }
 
   const float* planes = generic.planes.data();
-  auto front = [&](uint32_t index) { return light_in_front(planes + 4 * size_t(index & 0x7fffffffu), light); };
+  auto side = [&](uint32_t index) { return light_side(planes + 4 * size_t(index & 0x7fffffffu), light); };
   for (size_t i = 0; i < generic.sides.size(); ++i) {
     const SvSide& s = generic.sides[i];
-    const bool fa = front(s.plane_a);
-    const bool fb = front(s.plane_b) != bool(s.plane_b & SvSide::kFlip);
+    const int sa = side(s.plane_a), sb = (s.plane_b & SvSide::kFlip) ? -side(s.plane_b) : side(s.plane_b);
+    const bool second = s.plane_a & SvSide::kSecond;
+    const bool fa = second ? sa >= 0 : sa > 0, fb = second ? sb >= 0 : sb > 0;
     if (fa == fb) continue;
-    // A double-sided pair of a closed component appears twice, adjacent: once is enough one-sided.
-    if (have_ids && inside[generic.side_component[i]] >= 0 && i > 0 &&
-        generic.side_component[i - 1] == generic.side_component[i] &&
-        std::memcmp(&generic.sides[i - 1], &s, sizeof s) == 0 && !lv.sides.empty() &&
-        std::memcmp(&lv.sides.back().p0, &s.p0, sizeof s.p0 + sizeof s.p1) == 0)
+    // A double-sided pair of a closed component treated one-sided: the light
+    // outside counts front faces (the first copy's rule), inside back faces
+    // (the second copy's rule); the other copy goes.
+    if (have_ids && inside[generic.side_component[i]] >= 0 && second != bool(inside[generic.side_component[i]]))
       continue;
     SvSide o = s;
     o.plane_a = fa ? 0 : 1;
@@ -279,9 +279,10 @@ ShadowVolume build_light_volume(const ShadowVolume& generic, const float light[4
   }
   for (size_t i = 0; i < generic.caps.size(); ++i) {
     const SvCap& c = generic.caps[i];
-    const bool f = front(c.plane);
+    const int sc = side(c.plane);
+    const bool f = sc > 0;
     const bool ds = c.plane & SvCap::kDoubleSided;
-    if (!f && !ds) continue;
+    if (sc == 0 || (!f && !ds)) continue;
     // One-sided closed component: the light outside counts front faces, inside back faces.
     if (ds && have_ids && inside[generic.cap_component[i]] >= 0 && f == bool(inside[generic.cap_component[i]]))
       continue;
