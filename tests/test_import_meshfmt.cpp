@@ -31,9 +31,19 @@ const std::string kAssimp = "/usr/share/assimp/models";
 const std::string kDraco = std::string(GEOM_SHARED_DATA) + "/draco";
 const std::string kOpenscad = "/usr/share/openscad";  // Debian's openscad-testing-data: broken STL files
 
+fs::path temp_path() { return fs::temp_directory_path() / ("geom_test_meshfmt_" + std::to_string(::getpid())); }
+
+// The test's files live in one folder, removed when the process ends.
+struct TempDirCleanup {
+  ~TempDirCleanup() {
+    std::error_code ec;
+    fs::remove_all(temp_path(), ec);
+  }
+} temp_dir_cleanup;
+
 fs::path temp_dir() {
   static fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("geom_test_meshfmt_" + std::to_string(::getpid()));
+    fs::path d = temp_path();
     fs::create_directories(d);
     return d;
   }();

@@ -5,6 +5,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Utils/Property.hh>
+#include <mutex>
 #include <vector>
 
 namespace geom {
@@ -15,8 +16,11 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
   Mesh mesh;
   std::vector<Mesh::VertexHandle> vh(positions.size());
   for (size_t i = 0; i < vh.size(); ++i) vh[i] = mesh.add_vertex(Mesh::Point(positions[i].x, positions[i].y, positions[i].z));
-  // add_face reports its refusals on OpenMesh's error stream: silence it here.
-  omerr().disable();
+  // add_face reports each refusal on OpenMesh's process-wide error stream; the
+  // summary counts them instead. Silenced once (toggling it back on would race
+  // between threads baking in parallel).
+  static std::once_flag silenced;
+  std::call_once(silenced, [] { omerr().disable(); });
   for (size_t f = 0; f < triangle_count; ++f) {
     const uint32_t* v = indices + 3 * f;
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
@@ -28,7 +32,6 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
     else
       ++s.refused_faces;
   }
-  omerr().enable();
   OpenMesh::HPropHandleT<bool> visited;
   mesh.add_property(visited);
   for (auto h : mesh.halfedges()) mesh.property(visited, h) = false;

@@ -23,8 +23,13 @@
 //   each patch gets its own tessellated vertices (weld to join patches).
 // - Faces whose shader has SURF_NODRAW (0x80) are never drawn by the engine,
 //   so they cast no shadow there either: they are skipped (no geometry), counted
-//   as "nodraw.faces" and named in a warning. Faces with SURF_SKY (0x4) are
-//   drawn (the sky box) and kept; they are counted as "sky.faces".
+//   as "nodraw.faces" and in a warning. Faces with SURF_SKY (0x4) are drawn
+//   (the sky box) and kept; they are counted as "sky.faces". Billboards and
+//   faces that no model lists are skipped with a warning too.
+// - Patch borders are exact where neighbouring patches share control points;
+//   some OpenArena maps hold control points meant to coincide that differ in
+//   the last bit (oa_dm3: 832 -31.9999924 0 against 832 -32 0), which leaves
+//   gaps of that size (under 1e-3 units): weld with a tolerance to close them.
 // - Scene::source_counts: ("polygon.faces", n), ("polygon.triangles", n), the
 //   same for "mesh" and "patch", ("billboard.faces", n), ("nodraw.faces", n),
 //   ("sky.faces", n). The face counts cover every face of the file by type; the
@@ -35,8 +40,9 @@
 // is checked before use; patch sizes must be odd and in [3, 65]; a face may
 // belong to one model only; the triangle total is computed before anything is
 // allocated and refused above ImportOptions::max_triangles, or above
-// kDefaultTriangleCap when that is 0 (mesh-vertex ranges may legally overlap,
-// so a small file can claim any number of triangles).
+// kDefaultTriangleCap (2^24) when that is 0: mesh-vertex and vertex ranges may
+// legally overlap (OpenArena's polygons share them), so a small file can claim
+// any number of triangles.
 #include <cmath>
 #include <cstdint>
 #include <cstring>

@@ -1,0 +1,195 @@
+// geom/focus.h: focus regions and light matrices for shadow maps, per frame.
+//
+// What it computes (seed 002_147d3d07b97c563e.txt, Stamminger & Drettakis,
+// "Perspective Shadow Maps"):
+//   - the focus body H = conv(R u {l}) n S n L (Sect. 4.1), where R = V n S n L
+//     is the receiver region: the part of the view frustum V that lies in the
+//     scene bounds S and in the light frustum L (and in the optional receiver
+//     bounds). l is the light position; a directional light is a point at
+//     infinity, so conv(R u {l}) is R extruded towards the light. H holds every
+//     point that can cast a shadow onto a visible point of the scene: the
+//     paper's conv(V u {l}) n S n L contains it, and the two agree on what
+//     matters (a point of V outside S n L has no receiver on which a shadow
+//     could fall). Using R instead of V is what lets an infinite far plane work.
+//   - the light's kind in the camera's post-perspective space (Sect. 3): point,
+//     inverted point (rays converge; the depth order along a ray is reversed)
+//     or directional (a point light on the camera plane, a directional light
+//     parallel to the image plane);
+//   - the virtual camera shift (Sect. 4.2) that moves the camera back until H
+//     lies in front of it, with the near plane pushed as far as the scene allows;
+//   - the 4x4 world-to-shadow-clip matrix that maps H into the unit cube, by one
+//     of three methods: PSM (the paper), LiSPSM (Wimmer et al. 2004, "Light
+//     Space Perspective Shadow Maps", whose warp fades smoothly to none as the
+//     light direction approaches the view direction), and uniform (the same H,
+//     no warp: the ordinary focused shadow map);
+//   - the six 90-degree cube-face matrices of a point light (seed
+//     003_478065b2696af70d.txt, Gerasimov, "Omnidirectional Shadow Mapping").
+//
+// Conventions (all of them, for an engine):
+//   - World space is right-handed; units are the caller's.
+//   - Matrices are 4x4 doubles, column-major (m[col*4 + row]) like OpenGL and
+//     glTF: clip = M * (x, y, z, 1).
+//   - Clip space is OpenGL's: x, y, z in [-1, 1] after the divide by w ("the
+//     unit cube"). The camera's projection must be an OpenGL-style perspective
+//     (gluPerspective / glFrustum, off-centre allowed, infinite far allowed:
+//     m[10] == -1) or orthographic projection; the view matrix maps world to an
+//     eye space that looks down -z.
+//   - Shadow depth: the result's matrix always gives a smaller z/w to the point
+//     nearer the light along a light ray, for every light kind, inverted point
+//     lights included (their depth row is already flipped). Render the shadow
+//     map and compare with the ordinary depth test (GL_LESS, compare <=); an
+//     engine needs no special case for LightKind::InvertedPoint.
+//   - The matrix's handedness is not promised (an inverted point light flips
+//     depth, LiSPSM's warp swaps axes): render shadow passes without face
+//     culling, or cull by the sign the matrix gives.
+//   - A point light's frustum L is the half-space beyond `light_near` along
+//     `light_axis` (from the light towards the receivers' centre), cut by its
+//     range; a spot light's is the square pyramid around its cone (half-angle
+//     clamped to 89.9 degrees) from `light_near` to its range.
+//   - Every vertex of H is mapped to w > 0 and into the unit cube; the matrix
+//     is always finite, whatever the input (non-finite or absurd input gives
+//     the identity and FocusFallback::InvalidInput).
+//
+// How H is computed (libgeom/src/focus_body.cpp): R by plane clips of V;
+// conv(R u {l}) as half-spaces (R's planes that keep the light inside, and
+// the planes through the light and R's silhouette, which CGAL's 2D convex
+// hull of R seen from the light gives); H by clipping S with those and L's.
+// H's faces are the clipped polygons when they form a clean closed surface,
+// else those of a CGAL 3D convex hull of H's vertices (exact predicates);
+// either way they close (V - E + F = 2).
+//
+// Cost (bench/bench_focus.cpp, median per light per frame on one core of the
+// shared 2-core build machine): 20-41 microseconds for the matrix alone
+// (FocusOptions::faces off), 27-51 with H's faces; of a PSM frame about 8
+// go to R's clips, 1.5 to CGAL's silhouette hull, 8 to H's clips, 10 to the
+// faces and 1.5 to the matrix. A frame whose faces need the 3D hull costs
+// 60-200 more.
+// Reusing the same FocusResult frame after frame keeps its vectors' capacity.
+//
+// No exception escapes these functions. They may run on several threads at
+// once (working memory is per thread).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "geom/scene.h"
+#include "geom/span.h"
+
+namespace geom {
+
+// The camera of the frame: world-to-eye view and eye-to-clip projection.
+struct FocusCamera {
+  double view[16];        // column-major, world -> eye (looks down -z)
+  double projection[16];  // column-major, eye -> clip (OpenGL, depth -1..1)
+};
+
+// gluLookAt + gluPerspective. fovy in degrees (0 < fovy < 180), aspect = width
+// / height > 0, 0 < near < far; far may be +infinity (an infinite far plane).
+FocusCamera focus_camera_look_at(const double eye[3], const double target[3], const double up[3],
+                                 double fovy_degrees, double aspect, double near_dist, double far_dist);
+// From an engine's own matrices (column-major floats, as glUniformMatrix4fv takes them).
+FocusCamera focus_camera_from_matrices(const float view[16], const float projection[16]);
+
+enum class FocusLightType : uint8_t { Directional, Point, Spot };
+
+// A punctual light, glTF style (KHR_lights_punctual).
+struct FocusLight {
+  FocusLightType type = FocusLightType::Directional;
+  double position[3] = {0, 0, 0};    // point, spot
+  double direction[3] = {0, 0, -1};  // the direction the light travels (spot, directional); need not be unit
+  double spot_angle = 0.7853981633974483;  // radians, axis to cone edge (glTF outer cone), spot only
+  double range = 0;  // point, spot: beyond it no light (0 = infinite)
+  double near_dist = 0;  // point, spot: the light's near plane; 0 = automatic (1e-3 of the scene's diagonal)
+};
+// Converts an imported light (geom/scene.h).
+FocusLight focus_light_from(const Light& light);
+
+struct FocusBox {
+  double min[3];
+  double max[3];
+};
+
+enum class FocusMethod : uint8_t { Psm, Lispsm, Uniform };
+enum class LightKind : uint8_t { Point, InvertedPoint, Directional };
+
+// Why the result is not the plain requested method. Ordered by severity; when
+// several apply, the most severe is reported.
+enum class FocusFallback : uint8_t {
+  None,
+  NearLimited,         // psm: the near plane could not be pushed (camera inside the scene): the warp is limited
+  ParallelLight,       // the light is (nearly) parallel to the view direction: no warp is possible, uniform used
+  LightTooClose,       // psm: the post-perspective light is too close to H for one frustum: uniform used
+  OrthographicCamera,  // the camera has no perspective: psm / lispsm equal uniform, uniform used
+  LightInsideView,     // a point light lies among the receivers: one map covers only the half-space facing
+                       // them; render cube faces (focus_cube_faces) for this light (needs_cube_map is set)
+  DegenerateScene,     // scene bounds of zero size on some axis: that axis is inflated to 1e-6 of the largest
+                       // extent or 1e-9 of the largest coordinate, whichever is more (min > max: swapped)
+  EmptyFocus,          // H is empty (nothing visible is in the scene and the light): matrix covers S n L instead
+  InvalidInput,        // non-finite or absurd input: identity matrix
+};
+
+struct FocusOptions {
+  FocusMethod method = FocusMethod::Psm;
+  // PSM: the virtual camera's near plane is at least this fraction of the
+  // receivers' far depth (bounds the warp to far/near <= 1/ratio; 0 = none).
+  double psm_min_near_ratio = 0.05;
+  // LiSPSM: multiplies Wimmer's optimal warp distance n_opt (1 = optimal,
+  // larger = weaker warp, towards uniform).
+  double lispsm_n_scale = 1.0;
+  // Optional receiver bounds: only points inside receive shadows. Tightens R and H.
+  const FocusBox* receivers = nullptr;
+  // H's faces (FocusResult::face_sizes / face_indices) for a wireframe. An
+  // engine that needs only the matrix turns it off (a few microseconds, and
+  // no 3D hull on the frames whose clipped polygons do not close cleanly).
+  // Vertices are H's corners plus, at times, points in the middle of edges.
+  bool faces = true;
+  // Optional shadow casters: S becomes the convex hull of these points
+  // intersected with the scene box (the box alone when empty).
+  PositionSpan casters;
+};
+
+struct FocusResult {
+  double matrix[16];  // world -> shadow clip, column-major; maps H into the unit cube
+  FocusMethod method = FocusMethod::Uniform;  // the method actually used
+  FocusFallback fallback = FocusFallback::None;
+  const char* reason = "";    // static text: why the fallback was taken ("" when none)
+  LightKind light_kind = LightKind::Directional;      // the light in the camera's post-perspective space
+  LightKind psm_light_kind = LightKind::Directional;  // psm: the same for the shifted virtual camera
+  bool needs_cube_map = false;  // point light among the receivers (see LightInsideView)
+  double camera_shift = 0;      // psm: how far the virtual camera moved back (world units)
+  double psm_near = 0;          // psm: the virtual camera's near distance (from the shifted eye)
+  double psm_far = 0;           // psm: its far distance
+  double lispsm_n = 0;          // lispsm: the warp frustum's near distance (0 = no warp)
+  double light_axis[3] = {0, 0, 0};  // point, spot: the axis of the light frustum L (unit)
+  double light_near = 0;             // point, spot: L's near distance from the light
+  // H, for a wireframe: xyz per vertex (world space), and convex polygons as
+  // counts + indices (counter-clockwise seen from outside).
+  std::vector<double> vertices;
+  std::vector<uint32_t> face_sizes;
+  std::vector<uint32_t> face_indices;
+  size_t vertex_count() const { return vertices.size() / 3; }
+};
+
+// The whole per-frame computation: H, the light's kind, the shift and the
+// matrix of options.method. Always fills `out` with a finite matrix. Returns
+// false only for FocusFallback::InvalidInput.
+bool compute_focus(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
+                   const FocusOptions& options, FocusResult& out);
+
+const char* focus_method_name(FocusMethod method);      // "psm", "lispsm", "uniform"
+const char* light_kind_name(LightKind kind);            // "point", "inverted_point", "directional"
+const char* focus_fallback_name(FocusFallback fallback);  // "none", "near_limited", ...
+
+// Omnidirectional shadows (seed 003): the six view-projection matrices of a
+// cube map around `position`, 90-degree field of view, aspect 1, depth range
+// [near_dist, far_dist] (0 < near < far). Face order and orientation are
+// OpenGL's cube-map faces: +X, -X, +Y, -Y, +Z, -Z (GL_TEXTURE_CUBE_MAP_POSITIVE_X
+// + i), so that rendering face i with matrices[i] into layer i makes
+// texture(samplerCube, p - position) fetch the right texel. Column-major.
+void focus_cube_faces(const double position[3], double near_dist, double far_dist, double matrices[6][16]);
+// The face a direction falls on: the axis of largest magnitude, ties broken
+// towards x, then y (so every direction, seams and corners included, has
+// exactly one face); +0 counts as positive. -1 for the zero or a non-finite vector.
+int focus_cube_face_of(const double direction[3]);
+
+}  // namespace geom

@@ -1,0 +1,107 @@
+// focus_math.h (private): the small double-precision vector, plane and 4x4
+// matrix helpers shared by focus_body.cpp, light_matrix.cpp and cube_faces.cpp.
+// Matrices are column-major (m[col*4 + row]), as in geom/focus.h.
+#pragma once
+#include <cmath>
+#include <cstring>
+
+namespace geom {
+namespace focus {
+
+struct V3 {
+  double x = 0, y = 0, z = 0;
+  V3() = default;
+  V3(double a, double b, double c) : x(a), y(b), z(c) {}
+  explicit V3(const double* p) : x(p[0]), y(p[1]), z(p[2]) {}
+  double operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
+};
+inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator-(V3 a) { return {-a.x, -a.y, -a.z}; }
+inline V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+inline V3 operator*(double s, V3 a) { return a * s; }
+inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline double length(V3 a) { return std::sqrt(dot(a, a)); }
+inline V3 normalize(V3 a) {
+  double l = length(a);
+  return l > 0 ? a * (1.0 / l) : V3(0, 0, 0);
+}
+inline bool finite(V3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline double max_abs(V3 a) { return std::fmax(std::fabs(a.x), std::fmax(std::fabs(a.y), std::fabs(a.z))); }
+// A unit vector perpendicular to unit n.
+inline V3 any_perpendicular(V3 n) {
+  V3 t = std::fabs(n.x) < 0.6 ? V3(1, 0, 0) : std::fabs(n.y) < 0.6 ? V3(0, 1, 0) : V3(0, 0, 1);
+  return normalize(cross(n, t));
+}
+
+// Half-space n.x + d >= 0 (inside where non-negative).
+struct Plane {
+  V3 n;
+  double d = 0;
+  double eval(V3 p) const { return dot(n, p) + d; }
+};
+inline Plane plane_through(V3 point, V3 normal) { return {normal, -dot(normal, point)}; }
+
+struct M4 {
+  double m[16];
+  double& at(int row, int col) { return m[col * 4 + row]; }
+  double at(int row, int col) const { return m[col * 4 + row]; }
+  static M4 identity() {
+    M4 r;
+    std::memset(r.m, 0, sizeof r.m);
+    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1;
+    return r;
+  }
+  static M4 zero() {
+    M4 r;
+    std::memset(r.m, 0, sizeof r.m);
+    return r;
+  }
+  static M4 from(const double* p) {
+    M4 r;
+    std::memcpy(r.m, p, sizeof r.m);
+    return r;
+  }
+};
+inline M4 operator*(const M4& a, const M4& b) {
+  M4 r;
+  for (int c = 0; c < 4; ++c)
+    for (int rr = 0; rr < 4; ++rr) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += a.at(rr, k) * b.at(k, c);
+      r.at(rr, c) = s;
+    }
+  return r;
+}
+struct V4 {
+  double x, y, z, w;
+};
+inline V4 mul(const M4& a, double x, double y, double z, double w) {
+  return {a.m[0] * x + a.m[4] * y + a.m[8] * z + a.m[12] * w, a.m[1] * x + a.m[5] * y + a.m[9] * z + a.m[13] * w,
+          a.m[2] * x + a.m[6] * y + a.m[10] * z + a.m[14] * w, a.m[3] * x + a.m[7] * y + a.m[11] * z + a.m[15] * w};
+}
+inline V4 mul_point(const M4& a, V3 p) { return mul(a, p.x, p.y, p.z, 1); }
+inline bool finite(const M4& a) {
+  for (double v : a.m)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+// General inverse (cofactors); false when singular or not finite.
+bool invert(const M4& a, M4& out);
+
+// A rigid frame: rows are the axes, `origin` maps to 0. Column-major 4x4.
+inline M4 frame(V3 x_axis, V3 y_axis, V3 z_axis, V3 origin) {
+  M4 r = M4::identity();
+  V3 ax[3] = {x_axis, y_axis, z_axis};
+  for (int i = 0; i < 3; ++i) {
+    r.at(i, 0) = ax[i].x;
+    r.at(i, 1) = ax[i].y;
+    r.at(i, 2) = ax[i].z;
+    r.at(i, 3) = -dot(ax[i], origin);
+  }
+  return r;
+}
+
+}  // namespace focus
+}  // namespace geom

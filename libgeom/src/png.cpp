@@ -1,0 +1,53 @@
+// PNG writer and reader over the stb copies compiled in third_party/tinygltf_impl.cpp
+// (declared here, not defined again: see TOOLCHAIN.md on libdraco's own copies).
+#include "geom/png.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+namespace geom {
+
+bool write_png(const std::string& path, const PngImage& image, std::string& error) {
+  if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
+      image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels)) {
+    error = path + ": inconsistent image (" + std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+            std::to_string(image.channels) + ", " + std::to_string(image.pixels.size()) + " bytes)";
+    return false;
+  }
+  if (!stbi_write_png(path.c_str(), image.width, image.height, image.channels, image.pixels.data(),
+                      image.width * image.channels)) {
+    error = path + ": cannot write the PNG file";
+    return false;
+  }
+  return true;
+}
+
+bool read_png(const std::string& path, PngImage& image, std::string& error, int channels) {
+  image = PngImage();
+  if (channels < 0 || channels > 4) {
+    error = path + ": asked for " + std::to_string(channels) + " channels";
+    return false;
+  }
+  int w = 0, h = 0, n = 0;
+  if (!stbi_info(path.c_str(), &w, &h, &n)) {
+    error = path + ": not a readable image (" + std::string(stbi_failure_reason() ? stbi_failure_reason() : "?") + ")";
+    return false;
+  }
+  if (w <= 0 || h <= 0 || w > 16384 || h > 16384) {
+    error = path + ": image size " + std::to_string(w) + "x" + std::to_string(h) + " out of range";
+    return false;
+  }
+  unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, channels);
+  if (!data) {
+    error = path + ": cannot decode (" + std::string(stbi_failure_reason() ? stbi_failure_reason() : "?") + ")";
+    return false;
+  }
+  image.width = w;
+  image.height = h;
+  image.channels = channels ? channels : n;
+  image.pixels.assign(data, data + size_t(w) * size_t(h) * size_t(image.channels));
+  stbi_image_free(data);
+  return true;
+}
+
+}  // namespace geom

@@ -1,0 +1,22 @@
+#version 450 core
+// Lookup of the omnidirectional cube shadow map (003, Gerasimov, Sect. 12.3-12.4):
+// the map stores the squared distance to the light; the fragment's squared
+// distance times a multiplicative bias (12.3.7: "fDistSquared * DepthBias works
+// best in practice") is compared with 4 taps around the light-to-fragment
+// direction, and the comparisons are averaged (percentage-closer filtering, 12.4).
+uniform vec4 u_light;
+uniform samplerCube u_shadow_map;  // R32F squared distances
+uniform float u_cube_bias;         // < 1
+uniform float u_cube_filter;       // tap offset relative to the direction's length (about a texel)
+
+float shadow_visibility(vec3 world, vec3 normal) {
+  vec3 d = world - u_light.xyz;
+  float depth = dot(d, d) * u_cube_bias;
+  const vec3 taps[4] = vec3[](vec3(1, 1, 1), vec3(-1, -1, 1), vec3(-1, 1, -1), vec3(1, -1, -1));
+  float lit = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    float stored = textureLod(u_shadow_map, d + taps[i] * (u_cube_filter * length(d)), 0.0).r;
+    lit += depth - stored < 0.0 ? 0.25 : 0.0;
+  }
+  return lit;
+}

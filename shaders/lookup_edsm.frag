@@ -1,0 +1,48 @@
+#version 450 core
+// Edge distance shadow map lookup (001, Kenzel, Sect. 4.2.2). The depth
+// comparisons of the 2 x 2 texel footprint (textureGather on the comparison
+// sampler) say whether the sample is fully lit, fully shadowed or near a
+// silhouette (they differ); there
+// the signed edge distance is reconstructed by bilinear interpolation of the
+// distance map (Sect. 3.1.1: exact for one straight edge) and its sign decides:
+// positive = the occluder's side = shadow. Where one of the four texels holds no
+// edge (cleared to a huge value), or where the receiver is not behind the
+// stored edges (its own silhouette: comparison filtering is partial there from
+// the surface's slope alone), or where a texel's side of its edge disagrees
+// with its own comparison, the nearest texel's comparison stands (a simple
+// shadow map's answer).
+uniform mat4 u_light_matrix;
+uniform sampler2DShadow u_shadow_map;  // comparison sampler, gathered
+uniform sampler2D u_distance_map;      // RG32F: signed distance in texels, edge depth
+
+float shadow_visibility(vec3 world, vec3 normal) {
+  vec4 c = u_light_matrix * vec4(world, 1.0);
+  if (c.w <= 0.0) return 1.0;
+  vec3 p = c.xyz / c.w * 0.5 + 0.5;
+  if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
+  ivec2 size = textureSize(u_distance_map, 0);
+  vec2 tc = p.xy * vec2(size) - 0.5;
+  ivec2 i = ivec2(floor(tc));
+  vec2 f = tc - floor(tc);
+  // The comparisons of the 2 x 2 footprint (gather order: (0,1) (1,1) (1,0) (0,0)).
+  vec4 g = textureGather(u_shadow_map, p.xy, p.z);
+  float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
+  if (all(equal(g, vec4(g.x)))) return g.x;  // fully lit or fully shadowed
+  float d[4];
+  float edge_depth = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    vec2 t = texelFetch(u_distance_map, clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0).rg;
+    if (abs(t.r) > 1.0e6) return nearest;
+    d[k] = t.r;
+    edge_depth = max(edge_depth, t.g);
+  }
+  if (p.z <= edge_depth + 1.0e-4) return nearest;
+  // Each texel's side of its edge must agree with its own depth comparison
+  // (crossing shadows: a texel on an edge's lit side may be shadowed by another
+  // occluder); otherwise the nearest comparison stands.
+  vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
+  for (int k = 0; k < 4; ++k)
+    if ((d[k] <= 0.0) != (lit[k] > 0.5)) return nearest;
+  float dist = mix(mix(d[0], d[1], f.x), mix(d[2], d[3], f.x), f.y);
+  return dist > 0.0 ? 0.0 : 1.0;
+}

@@ -1,0 +1,198 @@
+// geombake focus FRAME.json: the focus body and shadow matrix the toolkit
+// computes for one frame (geom/focus.h), as JSON on stdout, so an engine's
+// programmer can paste a frame and compare. Input:
+//   {"camera": {"eye": [x,y,z], "target": [x,y,z], "up": [x,y,z],
+//               "fovy_degrees": 60, "aspect": 1.5, "near": 0.1, "far": 100 (null: infinite)},
+//    "light": {"type": "directional" | "point" | "spot", "position": [..], "direction": [..],
+//              "spot_angle_degrees": 30, "range": 50},   (only the keys the type needs)
+//    "scene_bounds": {"min": [..], "max": [..]},
+//    "receiver_bounds": {"min": [..], "max": [..]},      (optional)
+//    "method": "psm" | "lispsm" | "uniform"}             (optional, default psm)
+// Bad JSON, a missing key or an invalid frame: `Error: FILE: ...`, exit 1.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "geom/focus.h"
+#include "geombake/args.h"
+#include "geombake/command.h"
+
+namespace geombake {
+namespace {
+
+using Json = nlohmann::json;
+
+const char* kFocusHelp =
+    "usage: geombake focus FRAME.json\n"
+    "  Prints, as JSON, the focus body H and the world-to-shadow-clip matrix (column-major)\n"
+    "  of a camera, a light and the scene bounds: method, fallback (null or the reason),\n"
+    "  light_kind, camera_shift, focus_vertices, focus_faces, matrix.\n";
+
+struct BadFrame : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const Json& member(const Json& obj, const char* parent, const char* key) {
+  if (!obj.is_object()) throw BadFrame(std::string(parent) + ": expected an object");
+  auto it = obj.find(key);
+  if (it == obj.end()) throw BadFrame(std::string("missing key ") + parent + "." + key);
+  return *it;
+}
+
+double number(const Json& obj, const char* parent, const char* key) {
+  const Json& v = member(obj, parent, key);
+  if (!v.is_number() || !std::isfinite(v.get<double>()))
+    throw BadFrame(std::string(parent) + "." + key + ": expected a finite number");
+  return v.get<double>();
+}
+
+void vec3(const Json& obj, const char* parent, const char* key, double out[3]) {
+  const Json& v = member(obj, parent, key);
+  if (!v.is_array() || v.size() != 3) throw BadFrame(std::string(parent) + "." + key + ": expected 3 numbers");
+  for (int k = 0; k < 3; ++k) {
+    if (!v[k].is_number() || !std::isfinite(v[k].get<double>()))
+      throw BadFrame(std::string(parent) + "." + key + ": expected 3 finite numbers");
+    out[k] = v[k].get<double>();
+  }
+}
+
+geom::FocusBox box(const Json& obj, const char* parent) {
+  geom::FocusBox b;
+  vec3(obj, parent, "min", b.min);
+  vec3(obj, parent, "max", b.max);
+  return b;
+}
+
+int run_focus(const std::vector<std::string>& argv) {
+  Args args(argv, {"--help", "-h"}, {});
+  if (args.has("--help") || args.has("-h")) {
+    std::fputs(kFocusHelp, stdout);
+    return 0;
+  }
+  if (!args.error().empty() || args.positional().size() != 1) {
+    std::fprintf(stderr, "Error: %s\n%s", args.error().empty() ? "expected one FRAME.json" : args.error().c_str(),
+                 kFocusHelp);
+    return 2;
+  }
+  const std::string& file = args.positional()[0];
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    std::fprintf(stderr, "Error: %s: cannot open\n", file.c_str());
+    return 1;
+  }
+  try {
+    Json frame = Json::parse(in);  // throws on bad JSON
+    const Json& cam = member(frame, "frame", "camera");
+    double eye[3], target[3], up[3];
+    vec3(cam, "camera", "eye", eye);
+    vec3(cam, "camera", "target", target);
+    vec3(cam, "camera", "up", up);
+    double fovy = number(cam, "camera", "fovy_degrees"), aspect = number(cam, "camera", "aspect");
+    double near_d = number(cam, "camera", "near");
+    double far_d = member(cam, "camera", "far").is_null() ? HUGE_VAL : number(cam, "camera", "far");
+    if (!(fovy > 0 && fovy < 180)) throw BadFrame("camera.fovy_degrees: must lie in (0, 180)");
+    if (!(aspect > 0)) throw BadFrame("camera.aspect: must be positive");
+    if (!(near_d > 0 && far_d > near_d)) throw BadFrame("camera.near, camera.far: need 0 < near < far");
+    double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
+    double c[3] = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
+    if (f[0] == 0 && f[1] == 0 && f[2] == 0) throw BadFrame("camera.target: equals camera.eye");
+    if (c[0] == 0 && c[1] == 0 && c[2] == 0) throw BadFrame("camera.up: parallel to the view direction (or zero)");
+
+    const Json& lj = member(frame, "frame", "light");
+    geom::FocusLight light;
+    const Json& type = member(lj, "light", "type");
+    std::string t = type.is_string() ? type.get<std::string>() : "";
+    if (t == "directional") {
+      light.type = geom::FocusLightType::Directional;
+      vec3(lj, "light", "direction", light.direction);
+    } else if (t == "point" || t == "spot") {
+      light.type = t == "point" ? geom::FocusLightType::Point : geom::FocusLightType::Spot;
+      vec3(lj, "light", "position", light.position);
+      if (lj.contains("range")) light.range = number(lj, "light", "range");
+      if (light.range < 0) throw BadFrame("light.range: must not be negative");
+      if (t == "spot") {
+        vec3(lj, "light", "direction", light.direction);
+        double a = number(lj, "light", "spot_angle_degrees");
+        if (!(a > 0 && a <= 90)) throw BadFrame("light.spot_angle_degrees: must lie in (0, 90]");
+        light.spot_angle = a * 3.14159265358979323846 / 180;
+      }
+    } else {
+      throw BadFrame("light.type: expected \"directional\", \"point\" or \"spot\"");
+    }
+    geom::FocusBox scene = box(member(frame, "frame", "scene_bounds"), "scene_bounds");
+    geom::FocusOptions options;
+    geom::FocusBox receivers;
+    if (frame.contains("receiver_bounds")) {
+      receivers = box(frame["receiver_bounds"], "receiver_bounds");
+      options.receivers = &receivers;
+    }
+    if (frame.contains("method")) {
+      const Json& m = frame["method"];
+      std::string name = m.is_string() ? m.get<std::string>() : "";
+      if (name == "psm")
+        options.method = geom::FocusMethod::Psm;
+      else if (name == "lispsm")
+        options.method = geom::FocusMethod::Lispsm;
+      else if (name == "uniform")
+        options.method = geom::FocusMethod::Uniform;
+      else
+        throw BadFrame("method: expected \"psm\", \"lispsm\" or \"uniform\"");
+    }
+
+    geom::FocusCamera camera = geom::focus_camera_look_at(eye, target, up, fovy, aspect, near_d, far_d);
+    geom::FocusResult r;
+    if (!geom::compute_focus(camera, light, scene, options, r))
+      throw BadFrame(std::string("invalid frame: ") + r.reason);
+
+    // Compact output: one key per line, number arrays on one line.
+    auto num = [](double v) {
+      char buf[32];
+      if (!std::isfinite(v)) return std::string("null");
+      std::snprintf(buf, sizeof buf, "%.17g", v);
+      return std::string(buf);
+    };
+    auto str = [](const char* text) { return Json(text).dump(); };
+    std::string o = "{\n";
+    o += "  \"method\": " + str(geom::focus_method_name(r.method)) + ",\n";
+    o += "  \"requested_method\": " + str(geom::focus_method_name(options.method)) + ",\n";
+    o += "  \"fallback\": " + (r.fallback == geom::FocusFallback::None ? std::string("null") : str(r.reason)) + ",\n";
+    o += "  \"fallback_kind\": " + str(geom::focus_fallback_name(r.fallback)) + ",\n";
+    o += "  \"light_kind\": " + str(geom::light_kind_name(r.light_kind)) + ",\n";
+    o += "  \"psm_light_kind\": " + str(geom::light_kind_name(r.psm_light_kind)) + ",\n";
+    o += std::string("  \"needs_cube_map\": ") + (r.needs_cube_map ? "true" : "false") + ",\n";
+    o += "  \"camera_shift\": " + num(r.camera_shift) + ",\n";
+    o += "  \"psm_near\": " + num(r.psm_near) + ",\n";
+    o += "  \"psm_far\": " + num(r.psm_far) + ",\n";
+    o += "  \"lispsm_n\": " + num(r.lispsm_n) + ",\n";
+    o += "  \"focus_vertices\": [";
+    for (size_t i = 0; i < r.vertex_count(); ++i)
+      o += std::string(i ? ",\n    [" : "\n    [") + num(r.vertices[3 * i]) + ", " + num(r.vertices[3 * i + 1]) + ", " +
+           num(r.vertices[3 * i + 2]) + "]";
+    o += r.vertex_count() ? "\n  ],\n" : "],\n";
+    o += "  \"focus_faces\": [";
+    size_t base = 0;
+    for (size_t f = 0; f < r.face_sizes.size(); ++f) {
+      o += f ? ", [" : "[";
+      for (uint32_t i = 0; i < r.face_sizes[f]; ++i) o += (i ? ", " : "") + std::to_string(r.face_indices[base + i]);
+      o += "]";
+      base += r.face_sizes[f];
+    }
+    o += "],\n  \"matrix\": [";
+    for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(r.matrix[i]);
+    o += "]\n}\n";
+    std::fwrite(o.data(), 1, o.size(), stdout);
+    return 0;
+  } catch (const std::exception& e) {  // nlohmann parse errors and BadFrame
+    std::fprintf(stderr, "Error: %s: %s\n", file.c_str(), e.what());
+    return 1;
+  }
+}
+
+GEOMBAKE_COMMAND("focus", "focus body and shadow matrix of one frame (JSON in, JSON out)", run_focus);
+
+}  // namespace
+}  // namespace geombake
