@@ -86,16 +86,18 @@ dict=()
 log=$build/fuzz-$target.log
 marker=$build/.fuzz-$target.start
 touch "$marker"
+start=$(date +%s)
 set +e
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1} "$build/fuzz/fuzz_$target" -max_total_time="$seconds" -timeout=10 \
   -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$artifacts/" "${dict[@]}" "$@" "$corpus" "$seeds" \
   >"$log" 2>&1
 status=$?
 set -e
+elapsed=$(($(date +%s) - start))
 execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n1)
 rss=$(grep -o 'stat::peak_rss_mb: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -n1)
 findings=$(find "$artifacts" -type f -newer "$marker" | wc -l)
-echo "fuzz_$target: ${execs:-?} executions in $seconds s, corpus $(ls "$corpus" | wc -l) files" \
+echo "fuzz_$target: ${execs:-?} executions in $elapsed s (of $seconds), corpus $(ls "$corpus" | wc -l) files" \
   "(+$(ls "$seeds" | wc -l) seeds), peak RSS ${rss:-?} MB, exit $status, $findings new finding(s) in $artifacts"
 if [ "$status" -ne 0 ]; then
   grep -E 'ERROR|SUMMARY|contract broken|Test unit written|#0 |#1 |#2 |#3 ' "$log" | head -n 20 >&2

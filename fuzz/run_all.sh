@@ -3,7 +3,7 @@
 # them all for SECONDS each, PARALLEL at a time (default 2), through
 # fuzz/run.sh, and prints one line per target (executions, corpus, findings).
 # The lines are kept in build-fuzz/summary.txt. Exit status: non-zero if any
-# target had a finding.
+# target had a finding. SKIP_BUILD=1 runs the targets as built.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:?usage: fuzz/run_all.sh SECONDS [PARALLEL]}
@@ -12,7 +12,7 @@ targets=$(ls fuzz/fuzz_*.cpp | sed 's/.*fuzz_\(.*\)\.cpp/\1/')
 # Configure (as fuzz/run.sh does) and build everything once.
 [ -f build-fuzz/build.ninja ] || CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DGEOM_FUZZ=ON -DGEOM_BUILD_TESTS=OFF -DGEOM_BUILD_BENCH=OFF -DGEOM_BUILD_VIEWER=OFF >/dev/null
-cmake --build build-fuzz -j"${JOBS:-2}" --target fuzzers geombake
+[ -n "${SKIP_BUILD:-}" ] || cmake --build build-fuzz -j"${JOBS:-2}" --target fuzzers geombake
 : >build-fuzz/summary.txt
 status=0
 set -- $targets
