@@ -34,8 +34,8 @@
 
 namespace geom::detail {
 
-constexpr int kMaxPatchLevel = 64;      // segments per piece side
-constexpr int kMaxPatchControl = 65;    // control points per side (Quake 3 renderer's MAX_GRID_SIZE)
+constexpr int kMaxPatchLevel = 64;    // segments per piece side
+constexpr int kMaxPatchControl = 65;  // control points per side (Quake 3 renderer's MAX_GRID_SIZE)
 
 // Valid sizes: odd, 3 <= width, height <= kMaxPatchControl; 1 <= level <= kMaxPatchLevel.
 inline bool patch_size_valid(int64_t width, int64_t height) {

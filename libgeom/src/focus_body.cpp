@@ -24,8 +24,8 @@
 // closed whatever the tolerance decides.
 #include "focus_body.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Convex_hull_traits_adapter_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_2.h>
 #include <CGAL/convex_hull_3.h>
@@ -97,22 +97,22 @@ bool invert(const M4& a, M4& out) {
            m[12] * m[1] * m[11] + m[12] * m[3] * m[9];
   inv[13] = m[0] * m[9] * m[14] - m[0] * m[10] * m[13] - m[8] * m[1] * m[14] + m[8] * m[2] * m[13] +
             m[12] * m[1] * m[10] - m[12] * m[2] * m[9];
-  inv[2] = m[1] * m[6] * m[15] - m[1] * m[7] * m[14] - m[5] * m[2] * m[15] + m[5] * m[3] * m[14] +
-           m[13] * m[2] * m[7] - m[13] * m[3] * m[6];
+  inv[2] = m[1] * m[6] * m[15] - m[1] * m[7] * m[14] - m[5] * m[2] * m[15] + m[5] * m[3] * m[14] + m[13] * m[2] * m[7] -
+           m[13] * m[3] * m[6];
   inv[6] = -m[0] * m[6] * m[15] + m[0] * m[7] * m[14] + m[4] * m[2] * m[15] - m[4] * m[3] * m[14] -
            m[12] * m[2] * m[7] + m[12] * m[3] * m[6];
   inv[10] = m[0] * m[5] * m[15] - m[0] * m[7] * m[13] - m[4] * m[1] * m[15] + m[4] * m[3] * m[13] +
             m[12] * m[1] * m[7] - m[12] * m[3] * m[5];
   inv[14] = -m[0] * m[5] * m[14] + m[0] * m[6] * m[13] + m[4] * m[1] * m[14] - m[4] * m[2] * m[13] -
             m[12] * m[1] * m[6] + m[12] * m[2] * m[5];
-  inv[3] = -m[1] * m[6] * m[11] + m[1] * m[7] * m[10] + m[5] * m[2] * m[11] - m[5] * m[3] * m[10] -
-           m[9] * m[2] * m[7] + m[9] * m[3] * m[6];
-  inv[7] = m[0] * m[6] * m[11] - m[0] * m[7] * m[10] - m[4] * m[2] * m[11] + m[4] * m[3] * m[10] +
-           m[8] * m[2] * m[7] - m[8] * m[3] * m[6];
-  inv[11] = -m[0] * m[5] * m[11] + m[0] * m[7] * m[9] + m[4] * m[1] * m[11] - m[4] * m[3] * m[9] -
-            m[8] * m[1] * m[7] + m[8] * m[3] * m[5];
-  inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] +
-            m[8] * m[1] * m[6] - m[8] * m[2] * m[5];
+  inv[3] = -m[1] * m[6] * m[11] + m[1] * m[7] * m[10] + m[5] * m[2] * m[11] - m[5] * m[3] * m[10] - m[9] * m[2] * m[7] +
+           m[9] * m[3] * m[6];
+  inv[7] = m[0] * m[6] * m[11] - m[0] * m[7] * m[10] - m[4] * m[2] * m[11] + m[4] * m[3] * m[10] + m[8] * m[2] * m[7] -
+           m[8] * m[3] * m[6];
+  inv[11] = -m[0] * m[5] * m[11] + m[0] * m[7] * m[9] + m[4] * m[1] * m[11] - m[4] * m[3] * m[9] - m[8] * m[1] * m[7] +
+            m[8] * m[3] * m[5];
+  inv[15] = m[0] * m[5] * m[10] - m[0] * m[6] * m[9] - m[4] * m[1] * m[10] + m[4] * m[2] * m[9] + m[8] * m[1] * m[6] -
+            m[8] * m[2] * m[5];
   double det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
   if (!std::isfinite(det) || det == 0) return false;
   for (int i = 0; i < 16; ++i) out.m[i] = inv[i] / det;
@@ -272,8 +272,7 @@ static bool index_clipped(const Polytope& p, double eps, std::vector<double>& xy
       area = area + cross(verts[indices[start + i]] - verts[indices[start]],
                           verts[indices[start + (i + 1) % m]] - verts[indices[start]]);
     double perimeter = 0;
-    for (size_t i = 0; i < m; ++i)
-      perimeter += length(verts[indices[start + (i + 1) % m]] - verts[indices[start + i]]);
+    for (size_t i = 0; i < m; ++i) perimeter += length(verts[indices[start + (i + 1) % m]] - verts[indices[start + i]]);
     if (!(0.5 * length(area) > 8 * eps * perimeter)) return false;  // a sliver: no clean face
     for (size_t i = 0; i < m; ++i) directed.push_back({indices[start + i], indices[start + (i + 1) % m]});
     sizes.push_back(uint32_t(m));
@@ -346,8 +345,7 @@ void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std
   thread_local std::vector<std::array<uint32_t, 3>> edges;
   edges.clear();
   for (size_t i = 0; i < nt; ++i)
-    for (size_t k = 0; k < 3; ++k)
-      edges.push_back({uint32_t(tris[i][k]), uint32_t(tris[i][(k + 1) % 3]), uint32_t(i)});
+    for (size_t k = 0; k < 3; ++k) edges.push_back({uint32_t(tris[i][k]), uint32_t(tris[i][(k + 1) % 3]), uint32_t(i)});
   std::sort(edges.begin(), edges.end());
   auto twin_of = [&](uint32_t a, uint32_t b) -> int64_t {
     auto it = std::lower_bound(edges.begin(), edges.end(), std::array<uint32_t, 3>{b, a, 0});
@@ -390,8 +388,10 @@ void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std
       indices.push_back(v);
       size_t k = i;
       while (k < j && boundary[k][1] != v) ++k;
-      if (k == j) ok = false;
-      else v = boundary[k][2];
+      if (k == j)
+        ok = false;
+      else
+        v = boundary[k][2];
       if (ok && v == first && step + 1 != count) ok = false;  // several loops: not a disk
     }
     if (!ok || v != first) {
@@ -507,8 +507,7 @@ bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional,
   }
   using Traits = CGAL::Convex_hull_traits_adapter_2<Kernel, CGAL::Pointer_property_map<Kernel::Point_2>::type>;
   try {
-    CGAL::convex_hull_2(order.begin(), order.end(), std::back_inserter(ring),
-                        Traits(CGAL::make_property_map(flat)));
+    CGAL::convex_hull_2(order.begin(), order.end(), std::back_inserter(ring), Traits(CGAL::make_property_map(flat)));
   } catch (const std::exception&) {
     return false;
   }

@@ -15,7 +15,8 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
   HalfedgeSummary s;
   Mesh mesh;
   std::vector<Mesh::VertexHandle> vh(positions.size());
-  for (size_t i = 0; i < vh.size(); ++i) vh[i] = mesh.add_vertex(Mesh::Point(positions[i].x, positions[i].y, positions[i].z));
+  for (size_t i = 0; i < vh.size(); ++i)
+    vh[i] = mesh.add_vertex(Mesh::Point(positions[i].x, positions[i].y, positions[i].z));
   // add_face reports each refusal on OpenMesh's process-wide error stream; the
   // summary counts them instead. Silenced once (toggling it back on would race
   // between threads baking in parallel).

@@ -62,10 +62,10 @@ enum { kTextures = 1, kModels = 7, kVertexes = 10, kMeshVerts = 11, kFaces = 13 
 constexpr size_t kTextureSize = 72, kModelSize = 40, kVertexSize = 44, kFaceSize = 104;
 constexpr int32_t kSurfSky = 0x4, kSurfNoDraw = 0x80;
 enum FaceType { kPolygon = 1, kPatch = 2, kMesh = 3, kBillboard = 4 };
-const char* const kLumpNames[kLumpCount] = {"entities", "textures", "planes",     "nodes",    "leafs",   "leaf faces",
-                                            "leaf brushes", "models", "brushes",  "brush sides", "vertexes",
-                                            "mesh vertices", "effects", "faces", "lightmaps", "light volumes",
-                                            "visibility"};
+const char* const kLumpNames[kLumpCount] = {"entities",      "textures",      "planes",  "nodes",   "leafs",
+                                            "leaf faces",    "leaf brushes",  "models",  "brushes", "brush sides",
+                                            "vertexes",      "mesh vertices", "effects", "faces",   "lightmaps",
+                                            "light volumes", "visibility"};
 
 uint32_t u32(const unsigned char* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
@@ -99,8 +99,8 @@ std::string face_name(size_t f, const Face& face) {
 }
 
 bool read_lumps(const ImportInput& in, Lump lumps[kLumpCount], std::string& error) {
-  static const size_t record[kLumpCount] = {1, kTextureSize, 1, 1, 1, 1, 1, kModelSize, 1, 1, kVertexSize, 4, 1,
-                                            kFaceSize, 1, 1, 1};
+  static const size_t record[kLumpCount] = {1, kTextureSize, 1, 1, 1,         1, 1, kModelSize, 1,
+                                            1, kVertexSize,  4, 1, kFaceSize, 1, 1, 1};
   for (int l = 0; l < kLumpCount; ++l) {
     const int64_t offset = i32(in.data + 8 + 8 * l), length = i32(in.data + 12 + 8 * l);
     if (offset < 0 || length < 0 || uint64_t(offset) + uint64_t(length) > in.size) {
@@ -208,7 +208,8 @@ bool import_bsp(const ImportInput& in, Scene& out, std::string& error) {
   if (!read_lumps(in, lumps, error)) return false;
 
   std::vector<int32_t> texture_flags(lumps[kTextures].count);
-  for (size_t t = 0; t < texture_flags.size(); ++t) texture_flags[t] = i32(lumps[kTextures].data + kTextureSize * t + 64);
+  for (size_t t = 0; t < texture_flags.size(); ++t)
+    texture_flags[t] = i32(lumps[kTextures].data + kTextureSize * t + 64);
 
   std::vector<Face> faces(lumps[kFaces].count);
   uint64_t polygon_faces = 0, mesh_faces = 0, patch_faces = 0, billboard_faces = 0, nodraw_faces = 0, sky_faces = 0;
@@ -259,9 +260,12 @@ bool import_bsp(const ImportInput& in, Scene& out, std::string& error) {
     orphans += face_model[f] == TriangleSource::kNone;
     if (!emitted(f)) continue;
     const Face& face = faces[f];
-    if (face.type == kPolygon) polygon_triangles += uint64_t(face.meshvert_count) / 3;
-    else if (face.type == kMesh) mesh_triangles += uint64_t(face.meshvert_count) / 3;
-    else patch_triangles += patch_triangle_count(face.width, face.height, level);
+    if (face.type == kPolygon)
+      polygon_triangles += uint64_t(face.meshvert_count) / 3;
+    else if (face.type == kMesh)
+      mesh_triangles += uint64_t(face.meshvert_count) / 3;
+    else
+      patch_triangles += patch_triangle_count(face.width, face.height, level);
   }
   const uint64_t total = polygon_triangles + mesh_triangles + patch_triangles;
   const uint64_t cap = in.options.max_triangles ? in.options.max_triangles : kDefaultTriangleCap;
@@ -307,7 +311,8 @@ bool import_bsp(const ImportInput& in, Scene& out, std::string& error) {
       for (int32_t k = 0; k < face.meshvert_count; k += 3) {
         uint32_t tri[3];
         for (int j = 0; j < 3; ++j) {
-          const size_t v = size_t(face.vertex) + size_t(i32(lumps[kMeshVerts].data + 4 * (size_t(face.meshvert) + k + j)));
+          const size_t v =
+              size_t(face.vertex) + size_t(i32(lumps[kMeshVerts].data + 4 * (size_t(face.meshvert) + k + j)));
           if (remap[v] == TriangleSource::kNone) {
             float p[3];
             if (!finite3(vertex_position(lumps, v, p))) {
@@ -325,18 +330,21 @@ bool import_bsp(const ImportInput& in, Scene& out, std::string& error) {
     }
   }
 
-  out.source_counts = {{"polygon.faces", polygon_faces},   {"polygon.triangles", polygon_triangles},
-                       {"mesh.faces", mesh_faces},         {"mesh.triangles", mesh_triangles},
-                       {"patch.faces", patch_faces},       {"patch.triangles", patch_triangles},
-                       {"billboard.faces", billboard_faces}, {"nodraw.faces", nodraw_faces},
+  out.source_counts = {{"polygon.faces", polygon_faces},
+                       {"polygon.triangles", polygon_triangles},
+                       {"mesh.faces", mesh_faces},
+                       {"mesh.triangles", mesh_triangles},
+                       {"patch.faces", patch_faces},
+                       {"patch.triangles", patch_triangles},
+                       {"billboard.faces", billboard_faces},
+                       {"nodraw.faces", nodraw_faces},
                        {"sky.faces", sky_faces}};
   if (billboard_faces)
     out.warnings.push_back(in.name + ": " + std::to_string(billboard_faces) + " billboard faces skipped");
   if (nodraw_faces)
     out.warnings.push_back(in.name + ": " + std::to_string(nodraw_faces) +
                            " faces with a never-drawn shader (SURF_NODRAW) skipped");
-  if (orphans)
-    out.warnings.push_back(in.name + ": " + std::to_string(orphans) + " faces belong to no model, skipped");
+  if (orphans) out.warnings.push_back(in.name + ": " + std::to_string(orphans) + " faces belong to no model, skipped");
   return true;
 }
 

@@ -37,10 +37,9 @@
 //               Read here too: tinygltf refuses an indices accessor without a
 //               bufferView (valid glTF: zeros plus sparse values).
 //   buffers     data URIs (base64 or percent-encoded) are decoded here; external
-//               files are read by tinygltf after the checks below. A buffer with no data (no uri outside a GLB's first buffer, e.g. a
-//               placeholder an extension fills, or byteLength 0) is accepted, and
-//               a bufferView that uses it refused. Integers written as 1.0 are
-//               accepted, as the validator does.
+//               files are read by tinygltf after the checks below. A buffer with no data (no uri outside a GLB's first
+//               buffer, e.g. a placeholder an extension fills, or byteLength 0) is accepted, and a bufferView that uses
+//               it refused. Integers written as 1.0 are accepted, as the validator does.
 // Every mesh is decoded, also those no node uses, so a broken mesh refuses the
 // file; the output holds the scene's instances only.
 // Ignored: materials, textures, images (never loaded or decoded), animations,
@@ -66,7 +65,6 @@
 //   max_bytes is 0: kDefaultMaxBytes, 4 GiB) or over 2^32 - 1 vertices.
 //   Non-finite positions are refused by the dispatcher (import.cpp).
 #include <sys/stat.h>
-
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -150,7 +148,8 @@ Container split_container(const ImportInput& in, bool glb_extension, std::vector
       refuse("GLB chunk " + str(index) + " at byte " + str(off) + " claims " + str(clen) +
              " bytes, past the end of the file");
     const unsigned char* data = in.data + off + 8;
-    if (clen % 4 != 0) warnings.push_back("GLB chunk " + str(index) + " length " + str(clen) + " is not a multiple of 4");
+    if (clen % 4 != 0)
+      warnings.push_back("GLB chunk " + str(index) + " length " + str(clen) + " is not a multiple of 4");
     if (index == 0 && ctype != kChunkJson) refuse("the first GLB chunk is not JSON");
     if (ctype == kChunkJson) {
       if (have_json) refuse("GLB has a second JSON chunk (chunk " + str(index) + ")");
@@ -180,8 +179,10 @@ int json_depth(const std::string& s) {
   for (size_t i = 0; i < s.size(); ++i) {
     char ch = s[i];
     if (in_string) {
-      if (ch == '\\') ++i;
-      else if (ch == '"') in_string = false;
+      if (ch == '\\')
+        ++i;
+      else if (ch == '"')
+        in_string = false;
     } else if (ch == '"') {
       in_string = true;
     } else if (ch == '[' || ch == '{') {
@@ -222,9 +223,9 @@ struct SideTable {
 bool extension_allowed(const std::string& e) {
   static const char* const kRead[] = {"KHR_draco_mesh_compression", "KHR_mesh_quantization", "KHR_lights_punctual"};
   // Extensions that do not change where vertices are or which triangles exist.
-  static const char* const kNeutral[] = {"KHR_texture_transform", "KHR_texture_basisu", "KHR_xmp_json_ld",
-                                         "KHR_animation_pointer", "KHR_node_visibility", "KHR_techniques_webgl",
-                                         "EXT_lights_ies", "EXT_lights_image_based"};
+  static const char* const kNeutral[] = {"KHR_texture_transform", "KHR_texture_basisu",    "KHR_xmp_json_ld",
+                                         "KHR_animation_pointer", "KHR_node_visibility",   "KHR_techniques_webgl",
+                                         "EXT_lights_ies",        "EXT_lights_image_based"};
   for (const char* k : kRead)
     if (e == k) return true;
   for (const char* k : kNeutral)
@@ -335,7 +336,8 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
       std::string name = "buffer " + str(i);
       if (!b.is_object()) refuse(name + " is not a JSON object");
       auto bl = b.find("byteLength");
-      if (bl == b.end() || !bl->is_number_unsigned()) refuse(name + ": byteLength is missing or not a non-negative integer");
+      if (bl == b.end() || !bl->is_number_unsigned())
+        refuse(name + ": byteLength is missing or not a non-negative integer");
       uint64_t length = bl->get<uint64_t>();
       total += length;
       if (total > max_bytes) refuse("the buffers claim " + str(total) + " bytes, over the limit of " + str(max_bytes));
@@ -370,8 +372,7 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
       std::string path = join_path(in.base_dir, url_decode(u));
       uint64_t size = 0;
       if (!is_regular_file(path, &size)) refuse(name + ": cannot open '" + u + "' (looked for " + path + ")");
-      if (size != length)
-        refuse(name + ": '" + u + "' is " + str(size) + " bytes, but byteLength says " + str(length));
+      if (size != length) refuse(name + ": '" + u + "' is " + str(size) + " bytes, but byteLength says " + str(length));
     }
   }
 
@@ -391,7 +392,8 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
             for (const Json& c : l["color"]) d.color.push_back(c.is_number() ? c.get<double>() : -1.0);
           d.intensity = number(l, "intensity");
           d.range = number(l, "range");
-          if (l.contains("spot")) d.inner = number(l["spot"], "innerConeAngle"), d.outer = number(l["spot"], "outerConeAngle");
+          if (l.contains("spot"))
+            d.inner = number(l["spot"], "innerConeAngle"), d.outer = number(l["spot"], "outerConeAngle");
         }
         side.lights.push_back(std::move(d));
       }
@@ -520,45 +522,65 @@ void load_model(const Container& c, const Json& doc, const ImportInput& in, uint
 int component_size(int type) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;  // INT and DOUBLE are not glTF 2.0 component types
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;  // INT and DOUBLE are not glTF 2.0 component types
   }
 }
 
 int component_count(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT2: return 4;
-    case TINYGLTF_TYPE_MAT3: return 9;
-    case TINYGLTF_TYPE_MAT4: return 16;
-    default: return 0;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    case TINYGLTF_TYPE_MAT2:
+      return 4;
+    case TINYGLTF_TYPE_MAT3:
+      return 9;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
+    default:
+      return 0;
   }
 }
 
 const char* type_name(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "unknown";
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "unknown";
   }
 }
 
 // Checks that `count` elements of `elem` bytes, `stride` apart, starting at
 // `offset` in bufferView `view_index`, lie inside the bufferView and its buffer.
-void check_range(const tinygltf::Model& model, const std::string& what, int view_index, uint64_t offset,
-                 uint64_t count, uint64_t elem, uint64_t stride) {
+void check_range(const tinygltf::Model& model, const std::string& what, int view_index, uint64_t offset, uint64_t count,
+                 uint64_t elem, uint64_t stride) {
   if (view_index < 0 || size_t(view_index) >= model.bufferViews.size())
     refuse(what + " refers to bufferView " + std::to_string(view_index) + ", but the file has " +
            str(model.bufferViews.size()));
@@ -587,14 +609,16 @@ void validate_ranges(const tinygltf::Model& model, const std::vector<char>& buff
              ", which has no data (no uri, or byteLength 0)");
     uint64_t size = model.buffers[size_t(v.buffer)].data.size();
     if (v.byteOffset > size || v.byteLength > size - v.byteOffset)
-      refuse("bufferView " + str(i) + " (bytes " + str(v.byteOffset) + " to " + str(uint64_t(v.byteOffset) + v.byteLength) +
-             ") reaches past the end of buffer " + std::to_string(v.buffer) + " (" + str(size) + " bytes)");
+      refuse("bufferView " + str(i) + " (bytes " + str(v.byteOffset) + " to " +
+             str(uint64_t(v.byteOffset) + v.byteLength) + ") reaches past the end of buffer " +
+             std::to_string(v.buffer) + " (" + str(size) + " bytes)");
   }
   for (size_t i = 0; i < model.accessors.size(); ++i) {
     const tinygltf::Accessor& a = model.accessors[i];
     std::string what = "accessor " + str(i);
     int csize = component_size(a.componentType), ncomp = component_count(a.type);
-    if (!csize) refuse(what + ": componentType " + std::to_string(a.componentType) + " is not a glTF 2.0 component type");
+    if (!csize)
+      refuse(what + ": componentType " + std::to_string(a.componentType) + " is not a glTF 2.0 component type");
     uint64_t elem = uint64_t(csize) * uint64_t(ncomp);
     if (a.bufferView != -1) {
       if (a.bufferView < 0 || size_t(a.bufferView) >= model.bufferViews.size())
@@ -620,19 +644,24 @@ void validate_ranges(const tinygltf::Model& model, const std::vector<char>& buff
     if (s.indices.byteOffset < 0 || s.values.byteOffset < 0) refuse(what + ": negative sparse byteOffset");
     check_range(model, what + " (sparse indices)", s.indices.bufferView, uint64_t(s.indices.byteOffset),
                 uint64_t(s.count), uint64_t(isize), uint64_t(isize));
-    check_range(model, what + " (sparse values)", s.values.bufferView, uint64_t(s.values.byteOffset),
-                uint64_t(s.count), elem, elem);
+    check_range(model, what + " (sparse values)", s.values.bufferView, uint64_t(s.values.byteOffset), uint64_t(s.count),
+                elem, elem);
   }
 }
 
 // The integer that a normalized component maps to 1.0.
 double normalized_max(int type) {
   switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return 127.0;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 255.0;
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return 32767.0;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 65535.0;
-    default: return 4294967295.0;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return 127.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 255.0;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return 32767.0;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 65535.0;
+    default:
+      return 4294967295.0;
   }
 }
 
@@ -643,7 +672,8 @@ double read_component(const unsigned char* p, int type, bool normalized) {
       std::memcpy(&v, p, 1);
       return normalized ? std::max(v / 127.0, -1.0) : v;
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? p[0] / 255.0 : p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? p[0] / 255.0 : p[0];
     case TINYGLTF_COMPONENT_TYPE_SHORT: {
       int16_t v;
       std::memcpy(&v, p, 2);
@@ -689,7 +719,8 @@ void read_accessor(const tinygltf::Model& model, int index, const std::string& w
     } else {
       for (size_t i = 0; i < a.count; ++i)
         for (size_t k = 0; k < ncomp; ++k)
-          out[i * ncomp + k] = static_cast<T>(read_component(base + i * stride + k * csize, a.componentType, a.normalized));
+          out[i * ncomp + k] =
+              static_cast<T>(read_component(base + i * stride + k * csize, a.componentType, a.normalized));
     }
   }
   if (!a.sparse.isSparse) return;
@@ -714,7 +745,7 @@ void read_accessor(const tinygltf::Model& model, int index, const std::string& w
 
 // One primitive's triangles in its own (mesh) space, only the used vertices.
 struct Decoded {
-  bool triangles = false;       // false: skipped (points, lines, no positions)
+  bool triangles = false;        // false: skipped (points, lines, no positions)
   std::vector<float> positions;  // xyz
   std::vector<uint32_t> indices;
 };
@@ -779,9 +810,9 @@ std::string draco_counts_problem(const unsigned char* data, size_t size) {
   };
   uint32_t faces = 0, vertices = 0;
   if (header.encoder_method == draco::MESH_SEQUENTIAL_ENCODING) {
-    if (version < 0x202 ? !(buffer.Decode(&faces) && buffer.Decode(&vertices))
-                        : !(draco::DecodeVarint<uint32_t>(&faces, &buffer) &&
-                            draco::DecodeVarint<uint32_t>(&vertices, &buffer)))
+    if (version < 0x202
+            ? !(buffer.Decode(&faces) && buffer.Decode(&vertices))
+            : !(draco::DecodeVarint<uint32_t>(&faces, &buffer) && draco::DecodeVarint<uint32_t>(&vertices, &buffer)))
       return "";
   } else if (header.encoder_method == draco::MESH_EDGEBREAKER_ENCODING) {
     uint8_t traversal = 0;
@@ -817,7 +848,8 @@ void decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& prim,
            " cannot be decoded: " + decoded.status().error_msg_string());
   const draco::Mesh& mesh = *decoded.value();
   const draco::PointAttribute* att = mesh.GetAttributeByUniqueId(uint32_t(ref.position_id));
-  if (!att) refuse(what + ": the Draco data has no attribute with id " + std::to_string(ref.position_id) + " (POSITION)");
+  if (!att)
+    refuse(what + ": the Draco data has no attribute with id " + std::to_string(ref.position_id) + " (POSITION)");
   if (att->num_components() != 3)
     refuse(what + ": the Draco POSITION attribute has " + std::to_string(att->num_components()) + " components");
   // Numbers only: reading a DT_BOOL attribute converts bytes other than 0 and 1
@@ -864,7 +896,8 @@ void decode_primitive(const tinygltf::Model& model, int mesh_index, int prim_ind
                        ") skipped, only triangles are imported");
     return;
   }
-  if (prim.mode > 6 || prim.mode < 0) refuse(what + ": mode " + std::to_string(prim.mode) + " is not a glTF primitive mode");
+  if (prim.mode > 6 || prim.mode < 0)
+    refuse(what + ": mode " + std::to_string(prim.mode) + " is not a glTF primitive mode");
   if (auto it = side.draco.find({mesh_index, prim_index}); it != side.draco.end()) {
     decode_draco(model, prim, it->second, what, d);
     return;
@@ -902,8 +935,8 @@ void decode_primitive(const tinygltf::Model& model, int mesh_index, int prim_ind
     const uint32_t restart = uint32_t(normalized_max(ia.componentType));
     for (size_t i = 0; i < idx.size(); ++i) {
       if (idx[i] >= nv)
-        refuse("accessor " + std::to_string(indices) + " (indices of " + what + "): element " + str(i) +
-               " is vertex " + str(idx[i]) + ", out of range (" + str(nv) + " vertices)");
+        refuse("accessor " + std::to_string(indices) + " (indices of " + what + "): element " + str(i) + " is vertex " +
+               str(idx[i]) + ", out of range (" + str(nv) + " vertices)");
       if (idx[i] == restart)  // glTF 2.0 section 3.7.2.1: MUST NOT be used
         refuse("accessor " + std::to_string(indices) + " (indices of " + what + "): element " + str(i) + " is " +
                str(restart) + ", the primitive restart value, which glTF forbids");
@@ -914,8 +947,8 @@ void decode_primitive(const tinygltf::Model& model, int mesh_index, int prim_ind
     for (size_t i = 0; i < nv; ++i) idx[i] = uint32_t(i);
   }
   if (prim.mode == TINYGLTF_MODE_TRIANGLES && idx.size() % 3 != 0)
-    warnings.push_back(file + ": " + what + ": " + str(idx.size()) +
-                       " indices is not a multiple of 3, the last " + str(idx.size() % 3) + " ignored");
+    warnings.push_back(file + ": " + what + ": " + str(idx.size()) + " indices is not a multiple of 3, the last " +
+                       str(idx.size() % 3) + " ignored");
   assemble(positions, idx, prim.mode, d);
 }
 
@@ -1017,7 +1050,8 @@ std::vector<Instance> walk_scene(const tinygltf::Model& model) {
     std::vector<char> listed(n, 0);
     for (int r : model.scenes[size_t(s)].nodes) {
       if (r < 0 || size_t(r) >= n)
-        refuse("scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", but the file has " + str(n) + " nodes");
+        refuse("scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", but the file has " + str(n) +
+               " nodes");
       if (parent[size_t(r)] != -1)
         refuse("scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", a child of node " +
                std::to_string(parent[size_t(r)]) + ", as a root");
@@ -1060,9 +1094,12 @@ void add_light(const tinygltf::Model& model, const std::vector<LightDef>& lights
   const LightDef& src = lights[size_t(index)];
   const std::string what = where + ": light " + std::to_string(index);
   Light l;
-  if (src.type == "directional") l.type = LightType::Directional;
-  else if (src.type == "point") l.type = LightType::Point;
-  else if (src.type == "spot") l.type = LightType::Spot;
+  if (src.type == "directional")
+    l.type = LightType::Directional;
+  else if (src.type == "point")
+    l.type = LightType::Point;
+  else if (src.type == "spot")
+    l.type = LightType::Spot;
   else {
     out.warnings.push_back(what + " has no known type (\"" + src.type + "\"), ignored");
     return;
@@ -1089,10 +1126,14 @@ void add_light(const tinygltf::Model& model, const std::vector<LightDef>& lights
   } else if (!src.color.empty()) {
     out.warnings.push_back(what + ": color is not 3 non-negative numbers, white used");
   }
-  if (src.intensity >= 0) l.intensity = float(src.intensity);
-  else if (!std::isnan(src.intensity)) out.warnings.push_back(what + ": negative intensity, 1 used");
-  if (src.range > 0) l.range = float(src.range);
-  else if (!std::isnan(src.range)) out.warnings.push_back(what + ": range is not positive, infinite used");
+  if (src.intensity >= 0)
+    l.intensity = float(src.intensity);
+  else if (!std::isnan(src.intensity))
+    out.warnings.push_back(what + ": negative intensity, 1 used");
+  if (src.range > 0)
+    l.range = float(src.range);
+  else if (!std::isnan(src.range))
+    out.warnings.push_back(what + ": range is not positive, infinite used");
   if (l.type == LightType::Spot) {
     const double half_pi = 1.5707963267948966;
     double inner = std::isnan(src.inner) ? 0.0 : src.inner;
@@ -1114,8 +1155,10 @@ void integral_floats_to_integers(Json& j) {
   if (j.is_number_float()) {
     double v = j.get<double>();
     if (std::floor(v) == v && std::fabs(v) < 9007199254740992.0) {
-      if (v >= 0) j = uint64_t(v);
-      else j = int64_t(v);
+      if (v >= 0)
+        j = uint64_t(v);
+      else
+        j = int64_t(v);
     }
   } else if (j.is_structured()) {
     for (Json& e : j) integral_floats_to_integers(e);
@@ -1137,7 +1180,8 @@ void import(const ImportInput& in, Scene& out) {
     doc = Json::parse(c.json);
   } catch (const Json::exception& e) {
     std::string msg = e.what();
-    if (msg.rfind("[json.exception.", 0) == 0 && msg.find("] ") != std::string::npos) msg = msg.substr(msg.find("] ") + 2);
+    if (msg.rfind("[json.exception.", 0) == 0 && msg.find("] ") != std::string::npos)
+      msg = msg.substr(msg.find("] ") + 2);
     refuse("invalid JSON: " + msg);
   }
   integral_floats_to_integers(doc);  // depth bounded by kMaxJsonDepth

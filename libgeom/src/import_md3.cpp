@@ -71,8 +71,8 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
     return false;
   }
   if (frame < 0 || frame >= frames) {
-    error = "frame " + std::to_string(frame) + " requested, the model has " + std::to_string(frames) +
-            " (0 to " + std::to_string(frames - 1) + ")";
+    error = "frame " + std::to_string(frame) + " requested, the model has " + std::to_string(frames) + " (0 to " +
+            std::to_string(frames - 1) + ")";
     return false;
   }
   if (surfaces < 0 || !span_inside(surface_offset, surfaces, kSurfaceHeaderSize, in.size)) {
@@ -105,8 +105,8 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
       return false;
     }
     if (vertices < 0 || !span_inside(xyz_offset, int64_t(frames) * vertices, kVertexSize, room)) {
-      error = name + ": " + std::to_string(frames) + " frames of " + std::to_string(vertices) +
-              " vertices at offset " + std::to_string(xyz_offset) + " lie outside the file";
+      error = name + ": " + std::to_string(frames) + " frames of " + std::to_string(vertices) + " vertices at offset " +
+              std::to_string(xyz_offset) + " lie outside the file";
       return false;
     }
     if (end_offset < int32_t(kSurfaceHeaderSize) || uint64_t(end_offset) > room) {
@@ -129,8 +129,8 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
           return false;
         }
       }
-      out.indices.insert(out.indices.end(), {uint32_t(base + size_t(v[0])), uint32_t(base + size_t(v[2])),
-                                             uint32_t(base + size_t(v[1]))});
+      out.indices.insert(out.indices.end(),
+                         {uint32_t(base + size_t(v[0])), uint32_t(base + size_t(v[2])), uint32_t(base + size_t(v[1]))});
       out.sources.push_back({0, uint32_t(s), TriangleSource::kNone, TriangleSource::kNone});
     }
     const unsigned char* vp = sp + xyz_offset + size_t(frame) * size_t(vertices) * kVertexSize;

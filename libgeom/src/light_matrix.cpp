@@ -48,9 +48,9 @@ struct Frame {
   V3 eye, view_dir;
   // light
   bool directional = false;
-  V3 light_pos;       // point, spot
-  V3 towards_light;   // directional: unit vector towards the light
-  V3 light_axis;      // point, spot: the light frustum's axis (unit)
+  V3 light_pos;      // point, spot
+  V3 towards_light;  // directional: unit vector towards the light
+  V3 light_axis;     // point, spot: the light frustum's axis (unit)
   double light_near = 0;
   // bodies
   std::vector<Plane> s_planes, l_planes, r_planes, hull_clip, v_planes, hull_clip_planes;
@@ -243,8 +243,8 @@ bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& 
 // `travel`: `pts` the body, `eye` and `view` the viewer there, z_near the
 // receivers' nearest depth in those units. Returns the warp (chain before the
 // fit) through `warp`; false when there is no warp (gamma = 0 or negligible).
-bool lispsm_warp(const std::vector<V3>& pts, V3 travel, V3 eye, V3 view, double z_near, double n_scale,
-                 M4& warp, double& n_used) {
+bool lispsm_warp(const std::vector<V3>& pts, V3 travel, V3 eye, V3 view, double z_near, double n_scale, M4& warp,
+                 double& n_used) {
   double sin_gamma = length(cross(view, travel));
   if (!(sin_gamma > 1e-9)) return false;
   M4 basis = axis_frame(eye, travel, view);  // y: the view direction projected ⟂ to the light
@@ -303,8 +303,8 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
       V3 view = normalize(pb - pa);
       double z_centre = depth_of(fr, r_centre);
       V3 eye = pa - view * (z_centre * local);
-      warped = length(view) > 0 &&
-               lispsm_warp(q, V3(0, 0, 1), eye, view, z_near * local, opt.lispsm_n_scale, warp, n_used);
+      warped =
+          length(view) > 0 && lispsm_warp(q, V3(0, 0, 1), eye, view, z_near * local, opt.lispsm_n_scale, warp, n_used);
     }
     chain = warp * u;
   }
@@ -337,8 +337,7 @@ bool setup(const FocusCamera& cam, const FocusLight& light, FocusBox box, const 
     return false;
   }
   const M4& p = fr.proj;
-  if (p.at(3, 0) != 0 || p.at(3, 1) != 0 || p.at(0, 1) != 0 || p.at(1, 0) != 0 || p.at(2, 0) != 0 ||
-      p.at(2, 1) != 0) {
+  if (p.at(3, 0) != 0 || p.at(3, 1) != 0 || p.at(0, 1) != 0 || p.at(1, 0) != 0 || p.at(2, 0) != 0 || p.at(2, 1) != 0) {
     out.reason = "the projection is not an OpenGL perspective or orthographic matrix";
     return false;
   }
@@ -492,8 +491,8 @@ bool view_frustum(const Frame& fr, V3 corners[8]) {
 
 }  // namespace
 
-FocusCamera focus_camera_look_at(const double eye[3], const double target[3], const double up[3],
-                                 double fovy_degrees, double aspect, double near_dist, double far_dist) {
+FocusCamera focus_camera_look_at(const double eye[3], const double target[3], const double up[3], double fovy_degrees,
+                                 double aspect, double near_dist, double far_dist) {
   FocusCamera cam;
   V3 e(eye), fwd = normalize(V3(target) - e);
   V3 side = normalize(cross(fwd, V3(up)));
@@ -542,15 +541,24 @@ const char* light_kind_name(LightKind k) {
 }
 const char* focus_fallback_name(FocusFallback f) {
   switch (f) {
-    case FocusFallback::None: return "none";
-    case FocusFallback::NearLimited: return "near_limited";
-    case FocusFallback::ParallelLight: return "parallel_light";
-    case FocusFallback::LightTooClose: return "light_too_close";
-    case FocusFallback::OrthographicCamera: return "orthographic_camera";
-    case FocusFallback::LightInsideView: return "light_inside_view";
-    case FocusFallback::DegenerateScene: return "degenerate_scene";
-    case FocusFallback::EmptyFocus: return "empty_focus";
-    case FocusFallback::InvalidInput: return "invalid_input";
+    case FocusFallback::None:
+      return "none";
+    case FocusFallback::NearLimited:
+      return "near_limited";
+    case FocusFallback::ParallelLight:
+      return "parallel_light";
+    case FocusFallback::LightTooClose:
+      return "light_too_close";
+    case FocusFallback::OrthographicCamera:
+      return "orthographic_camera";
+    case FocusFallback::LightInsideView:
+      return "light_inside_view";
+    case FocusFallback::DegenerateScene:
+      return "degenerate_scene";
+    case FocusFallback::EmptyFocus:
+      return "empty_focus";
+    case FocusFallback::InvalidInput:
+      return "invalid_input";
   }
   return "unknown";
 }
@@ -669,8 +677,8 @@ bool focus::compute_focus_staged(const FocusCamera& camera, const FocusLight& li
       if (!focus_by_planes(fr.r_verts, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, axis,
                            fr.v_planes.data(), fr.v_planes.size(), clip.data(), clip.size(), box, fr.eps,
                            fr.hull_clip_planes, fr.body, fr.scratch, times))
-        focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach,
-                   clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
+        focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach, clip.data(),
+                   clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
     } else {
       fr.body.clear();
     }

@@ -85,8 +85,8 @@ struct FocusCamera {
 
 // gluLookAt + gluPerspective. fovy in degrees (0 < fovy < 180), aspect = width
 // / height > 0, 0 < near < far; far may be +infinity (an infinite far plane).
-FocusCamera focus_camera_look_at(const double eye[3], const double target[3], const double up[3],
-                                 double fovy_degrees, double aspect, double near_dist, double far_dist);
+FocusCamera focus_camera_look_at(const double eye[3], const double target[3], const double up[3], double fovy_degrees,
+                                 double aspect, double near_dist, double far_dist);
 // From an engine's own matrices (column-major floats, as glUniformMatrix4fv takes them).
 FocusCamera focus_camera_from_matrices(const float view[16], const float projection[16]);
 
@@ -95,10 +95,10 @@ enum class FocusLightType : uint8_t { Directional, Point, Spot };
 // A punctual light, glTF style (KHR_lights_punctual).
 struct FocusLight {
   FocusLightType type = FocusLightType::Directional;
-  double position[3] = {0, 0, 0};    // point, spot
-  double direction[3] = {0, 0, -1};  // the direction the light travels (spot, directional); need not be unit
+  double position[3] = {0, 0, 0};          // point, spot
+  double direction[3] = {0, 0, -1};        // the direction the light travels (spot, directional); need not be unit
   double spot_angle = 0.7853981633974483;  // radians, axis to cone edge (glTF outer cone), spot only
-  double range = 0;  // point, spot: beyond it no light (0 = infinite)
+  double range = 0;                        // point, spot: beyond it no light (0 = infinite)
   double near_dist = 0;  // point, spot: the light's near plane; 0 = automatic (1e-3 of the scene's diagonal)
 };
 // Converts an imported light (geom/scene.h).
@@ -149,19 +149,19 @@ struct FocusOptions {
 };
 
 struct FocusResult {
-  double matrix[16];  // world -> shadow clip, column-major; maps H into the unit cube
+  double matrix[16];                          // world -> shadow clip, column-major; maps H into the unit cube
   FocusMethod method = FocusMethod::Uniform;  // the method actually used
   FocusFallback fallback = FocusFallback::None;
-  const char* reason = "";    // static text: why the fallback was taken ("" when none)
+  const char* reason = "";                            // static text: why the fallback was taken ("" when none)
   LightKind light_kind = LightKind::Directional;      // the light in the camera's post-perspective space
   LightKind psm_light_kind = LightKind::Directional;  // psm: the same for the shifted virtual camera
-  bool needs_cube_map = false;  // point light among the receivers (see LightInsideView)
-  double camera_shift = 0;      // psm: how far the virtual camera moved back (world units)
-  double psm_near = 0;          // psm: the virtual camera's near distance (from the shifted eye)
-  double psm_far = 0;           // psm: its far distance
-  double lispsm_n = 0;          // lispsm: the warp frustum's near distance (0 = no warp)
-  double light_axis[3] = {0, 0, 0};  // point, spot: the axis of the light frustum L (unit)
-  double light_near = 0;             // point, spot: L's near distance from the light
+  bool needs_cube_map = false;                        // point light among the receivers (see LightInsideView)
+  double camera_shift = 0;                            // psm: how far the virtual camera moved back (world units)
+  double psm_near = 0;                                // psm: the virtual camera's near distance (from the shifted eye)
+  double psm_far = 0;                                 // psm: its far distance
+  double lispsm_n = 0;                                // lispsm: the warp frustum's near distance (0 = no warp)
+  double light_axis[3] = {0, 0, 0};                   // point, spot: the axis of the light frustum L (unit)
+  double light_near = 0;                              // point, spot: L's near distance from the light
   // H, for a wireframe: xyz per vertex (world space), and convex polygons as
   // counts + indices (counter-clockwise seen from outside).
   std::vector<double> vertices;
@@ -176,8 +176,8 @@ struct FocusResult {
 bool compute_focus(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
                    const FocusOptions& options, FocusResult& out);
 
-const char* focus_method_name(FocusMethod method);      // "psm", "lispsm", "uniform"
-const char* light_kind_name(LightKind kind);            // "point", "inverted_point", "directional"
+const char* focus_method_name(FocusMethod method);        // "psm", "lispsm", "uniform"
+const char* light_kind_name(LightKind kind);              // "point", "inverted_point", "directional"
 const char* focus_fallback_name(FocusFallback fallback);  // "none", "near_limited", ...
 
 // Omnidirectional shadows (seed 003): the six view-projection matrices of a
