@@ -17,11 +17,21 @@ std::string json_escape(const std::string& s) {
   out.reserve(s.size() + 2);
   for (unsigned char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (c < 0x20) {
           char buf[8];
@@ -76,11 +86,10 @@ void analyze(const Scene& scene, float weld_tolerance, const TopologyOptions& op
   Topology t = build_topology(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
                               scene.triangle_count(), options);
   auto t2 = clock::now();
-  if (timing)
-    report.stages.push_back({"topology", std::chrono::duration<double>(t2 - t1).count(), peak_rss_bytes()});
+  if (timing) report.stages.push_back({"topology", std::chrono::duration<double>(t2 - t1).count(), peak_rss_bytes()});
   report.stats = t.stats;
-  report.halfedge = summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
-                                        scene.triangle_count());
+  report.halfedge =
+      summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(), scene.triangle_count());
   if (timing)
     report.stages.push_back({"halfedge", std::chrono::duration<double>(clock::now() - t2).count(), peak_rss_bytes()});
   report.lights = scene.lights.size();
@@ -161,10 +170,9 @@ std::string report_text(const Report& r) {
                 (unsigned long long)s.boundary_edges, (unsigned long long)s.inconsistent_edges,
                 (unsigned long long)s.non_manifold_edges, s.max_edge_faces, (unsigned long long)s.coplanar_edges,
                 (unsigned long long)s.convex_edges, (unsigned long long)s.concave_edges,
-                (unsigned long long)s.components, (unsigned long long)s.closed_components,
-                s.closed ? "closed" : "open", (long long)s.euler_characteristic,
-                (unsigned long long)r.halfedge.boundary_loops, (unsigned long long)r.halfedge.refused_faces,
-                (unsigned long long)r.lights);
+                (unsigned long long)s.components, (unsigned long long)s.closed_components, s.closed ? "closed" : "open",
+                (long long)s.euler_characteristic, (unsigned long long)r.halfedge.boundary_loops,
+                (unsigned long long)r.halfedge.refused_faces, (unsigned long long)r.lights);
   std::string o = buf;
   for (const auto& [group, fields] : group_counts(r.source_counts)) {
     o += "  " + group + ":";
@@ -172,8 +180,8 @@ std::string report_text(const Report& r) {
     o += "\n";
   }
   for (const StageTiming& st : r.stages) {
-    std::snprintf(buf, sizeof buf, "  stage %-10s %9.3f ms, peak RSS %.1f MB\n", st.stage.c_str(),
-                  st.seconds * 1e3, st.peak_rss_bytes / 1048576.0);
+    std::snprintf(buf, sizeof buf, "  stage %-10s %9.3f ms, peak RSS %.1f MB\n", st.stage.c_str(), st.seconds * 1e3,
+                  st.peak_rss_bytes / 1048576.0);
     o += buf;
   }
   for (const std::string& w : r.warnings) o += "  Warning: " + w + "\n";

@@ -94,8 +94,8 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
     RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
     float* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                             3 * sizeof(float), positions.size()));
-    uint32_t* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
-                                                                  RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), tri_count));
+    uint32_t* ib = static_cast<uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), tri_count));
     if (!vb || !ib) {
       rtcReleaseGeometry(geometry);
       out.error = "shadow reference: Embree buffer allocation failed";

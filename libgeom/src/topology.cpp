@@ -17,7 +17,7 @@ namespace {
 struct HalfEdge {
   uint32_t other;  // the larger vertex
   uint32_t face;
-  uint8_t k;       // which edge of the face: (i_k, i_{k+1})
+  uint8_t k;  // which edge of the face: (i_k, i_{k+1})
   uint8_t reversed;
 };
 
@@ -87,7 +87,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     for (HalfEdge* run = b; run != e;) {
       HalfEdge* end = run;
       while (end != e && end->other == run->other) ++end;
-      Edge edge{uint32_t(v0), run->other, uint32_t(t.edge_faces.size()), uint32_t(end - run), EdgeKind::Boundary,
+      Edge edge{uint32_t(v0),    run->other, uint32_t(t.edge_faces.size()), uint32_t(end - run), EdgeKind::Boundary,
                 EdgeShape::None, 0.0f};
       const uint32_t id = uint32_t(t.edges.size());
       for (HalfEdge* h = run; h != end; ++h) {
@@ -123,10 +123,18 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   const double coplanar_cos = std::cos(options.coplanar_degrees * M_PI / 180.0);
   for (Edge& e : t.edges) {
     switch (e.kind) {
-      case EdgeKind::Boundary: ++s.boundary_edges; break;
-      case EdgeKind::Manifold: ++s.manifold_edges; break;
-      case EdgeKind::Inconsistent: ++s.inconsistent_edges; break;
-      case EdgeKind::NonManifold: ++s.non_manifold_edges; break;
+      case EdgeKind::Boundary:
+        ++s.boundary_edges;
+        break;
+      case EdgeKind::Manifold:
+        ++s.manifold_edges;
+        break;
+      case EdgeKind::Inconsistent:
+        ++s.inconsistent_edges;
+        break;
+      case EdgeKind::NonManifold:
+        ++s.non_manifold_edges;
+        break;
     }
     s.max_edge_faces = std::max(s.max_edge_faces, e.face_count);
     if (e.kind != EdgeKind::Manifold) continue;

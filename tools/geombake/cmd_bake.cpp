@@ -28,8 +28,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -230,7 +230,7 @@ struct Job {
   // or kRunning -> kTimedOut (set by the watchdog: the worker's result is dropped).
   std::atomic<int> state{0};
   std::atomic<int64_t> started_ns{0};  // steady clock, when state became kRunning
-  size_t worker = 0;                    // the worker thread that runs it
+  size_t worker = 0;                   // the worker thread that runs it
 };
 enum { kPending, kRunning, kWriting, kFinished, kTimedOut };
 
@@ -277,7 +277,7 @@ Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportO
   }
   int expected = kRunning;
   if (timeout > 0 && double(now_ns() - job.started_ns.load()) * 1e-9 > timeout) return o;  // the caller times it out
-  if (!job.state.compare_exchange_strong(expected, kWriting)) return o;  // given up on: write nothing
+  if (!job.state.compare_exchange_strong(expected, kWriting)) return o;                    // given up on: write nothing
   std::string error;
   if (!geom::write_baked(job.output, o.result.sections, error)) {
     o.result.ok = false;
@@ -287,7 +287,6 @@ Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportO
   std::vector<geom::BakedSection>().swap(o.result.sections);
   return o;
 }
-
 
 int run_bake(const std::vector<std::string>& argv) {
   Args args(argv,

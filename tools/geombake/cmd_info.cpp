@@ -42,8 +42,10 @@ int run_info(const std::vector<std::string>& argv) {
   geom::ImportOptions options;
   float tolerance = 0;
   geom::TopologyOptions topo;
-  if (!parse_number(args, "--weld-tolerance", tolerance) || !parse_number(args, "--coplanar-degrees", topo.coplanar_degrees) ||
-      !parse_number(args, "--patch-level", options.patch_level) || !parse_number(args, "--md3-frame", options.md3_frame) ||
+  if (!parse_number(args, "--weld-tolerance", tolerance) ||
+      !parse_number(args, "--coplanar-degrees", topo.coplanar_degrees) ||
+      !parse_number(args, "--patch-level", options.patch_level) ||
+      !parse_number(args, "--md3-frame", options.md3_frame) ||
       !parse_number(args, "--max-triangles", options.max_triangles))
     return 2;
   std::vector<std::string> inputs;

@@ -1,12 +1,12 @@
 // tools/geombench/bake_throughput.cpp: see bake_throughput.h.
 #include "bake_throughput.h"
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <malloc.h>
 #include <meshoptimizer.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <chrono>
 #include <cstdio>
 #include <functional>

@@ -36,10 +36,9 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "bake_throughput.h"
 #include "geom/shadow_reference.h"
@@ -207,8 +206,9 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
         if (r.error_visible >= worst) worst = r.error_visible, where = r.scene + " " + r.technique;
       }
     if (n)
-      out.push_back(verdict(worst <= 0.001) + ": shadow volumes near zero error (goal <= 0.001 of visible pixels): worst " +
-                    fmt("%.5f", worst) + " (" + where + ")");
+      out.push_back(verdict(worst <= 0.001) +
+                    ": shadow volumes near zero error (goal <= 0.001 of visible pixels): worst " + fmt("%.5f", worst) +
+                    " (" + where + ")");
   }
   {  // edsm at N: at most a tenth of ssm at N and no worse than ssm at 4N, hard scenes
     int n = 0, tenth = 0, four = 0, n4 = 0;
@@ -223,13 +223,15 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
       if (!ok && misses.size() < 300)
         misses += " " + e.scene + "@" + std::to_string(e.size) + " (" + fmt("%.4f", e.error_visible) + " vs " +
                   fmt("%.4f", s->error_visible) + ")";
-      if (const Row* s4 = find(rows, e.scene, "ssm", 4 * e.size)) ++n4, four += e.error_visible <= s4->error_visible + 1e-12;
+      if (const Row* s4 = find(rows, e.scene, "ssm", 4 * e.size))
+        ++n4, four += e.error_visible <= s4->error_visible + 1e-12;
     }
     if (n) {
-      out.push_back(verdict(tenth == n) + ": edsm@N <= ssm@N / 10 on the hard scenes: " + std::to_string(tenth) + " of " +
-                    std::to_string(n) + (misses.empty() ? "" : "; missed:" + misses));
-      if (n4) out.push_back(verdict(four == n4) + ": edsm@N <= ssm@4N on the hard scenes: " + std::to_string(four) +
-                            " of " + std::to_string(n4));
+      out.push_back(verdict(tenth == n) + ": edsm@N <= ssm@N / 10 on the hard scenes: " + std::to_string(tenth) +
+                    " of " + std::to_string(n) + (misses.empty() ? "" : "; missed:" + misses));
+      if (n4)
+        out.push_back(verdict(four == n4) + ": edsm@N <= ssm@4N on the hard scenes: " + std::to_string(four) + " of " +
+                      std::to_string(n4));
     }
   }
   for (const char* t : {"esm", "edsm"}) {  // cost at most 1.5x ssm
@@ -256,8 +258,9 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
       if (!u) continue;
       ++n, ok += r.error_visible < u->error_visible;
     }
-    if (n) out.push_back(verdict(ok == n) + ": " + t + " error < uniform on wide-depth: " + std::to_string(ok) + " of " +
-                         std::to_string(n) + " sizes");
+    if (n)
+      out.push_back(verdict(ok == n) + ": " + t + " error < uniform on wide-depth: " + std::to_string(ok) + " of " +
+                    std::to_string(n) + " sizes");
   }
   for (size_t i = 0; i + 2 < bake.size() + 0 && i + 1 < bake.size(); i += 3) {
     if (bake[i].method != "bake" || bake[i + 1].method != "meshopt") continue;
@@ -281,14 +284,16 @@ std::string plot_svg(const std::vector<Row>& rows, const std::vector<std::string
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
     << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  s << "<text x=\"8\" y=\"18\" font-size=\"14\">geombench: error (share of visible pixels wrong) against shadow-pass time ("
+  s << "<text x=\"8\" y=\"18\" font-size=\"14\">geombench: error (share of visible pixels wrong) against shadow-pass "
+       "time ("
     << kind << " time, log scale); a line per technique, a point per shadow-map size</text>\n";
   for (size_t si = 0; si < scenes.size(); ++si) {
     const int ox = int(si % cols) * pw, oy = 30 + int(si / cols) * ph;
     double tmin = 1e30, tmax = 0, emax = 0;
     for (const Row& r : rows)
-      if (r.scene == scenes[si]) tmin = std::min(tmin, std::max(r.time_ms, 1e-3)), tmax = std::max(tmax, r.time_ms),
-                                 emax = std::max(emax, r.error_visible);
+      if (r.scene == scenes[si])
+        tmin = std::min(tmin, std::max(r.time_ms, 1e-3)), tmax = std::max(tmax, r.time_ms),
+        emax = std::max(emax, r.error_visible);
     if (tmax <= 0) continue;
     const double l0 = std::floor(std::log10(tmin)), l1 = std::max(l0 + 1, std::ceil(std::log10(std::max(tmax, 1e-3))));
     emax = emax > 0 ? emax * 1.1 : 0.01;
@@ -348,7 +353,8 @@ int usage(const std::string& error) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  geombake::Args args(std::vector<std::string>(argv + 1, argv + argc), {"--quick", "--no-bake", "--no-render", "-h", "--help"},
+  geombake::Args args(std::vector<std::string>(argv + 1, argv + argc),
+                      {"--quick", "--no-bake", "--no-render", "-h", "--help"},
                       {"-o", "--scenes", "--techniques", "--sizes", "--size", "--frames", "--shaders"});
   if (!args.error().empty()) return usage(args.error());
   if (args.has("-h") || args.has("--help")) return usage("");
@@ -391,8 +397,8 @@ int main(int argc, char** argv) {
     const std::vector<int> ns = quick ? std::vector<int>{70, 158} : std::vector<int>{70, 158, 316, 633};
     bake = geombench::bake_throughput(ns, quick ? 1 : 3);
     std::printf("Bake throughput (one core; time best of %d; peak: extra resident memory of one run)\n", quick ? 1 : 3);
-    std::printf("%10s  %-9s %10s %12s %10s %9s %9s\n", "triangles", "method", "ms", "Mtris/s", "peak MiB",
-                "speed/mo", "mem/mo");
+    std::printf("%10s  %-9s %10s %12s %10s %9s %9s\n", "triangles", "method", "ms", "Mtris/s", "peak MiB", "speed/mo",
+                "mem/mo");
     for (size_t i = 0; i < bake.size(); ++i) {
       const geombench::BakeRow& r = bake[i];
       const geombench::BakeRow& mo = bake[i - i % 3 + 1];
@@ -435,9 +441,9 @@ int main(int argc, char** argv) {
     kind = kind_text.find("GPU") != std::string::npos ? "gpu" : "wall";
     viewer::View view = b.default_view ? viewer::default_view(*state, width, height) : b.view;
     view.width = width, view.height = height;
-    const geom::ShadowReference ref =
-        geom::shadow_reference(geom::positions_of(b.scene.positions.data(), b.scene.vertex_count()), b.scene.indices.data(),
-                               b.scene.indices.size(), to_reference(view), to_reference(b.light));
+    const geom::ShadowReference ref = geom::shadow_reference(
+        geom::positions_of(b.scene.positions.data(), b.scene.vertex_count()), b.scene.indices.data(),
+        b.scene.indices.size(), to_reference(view), to_reference(b.light));
     if (!ref.ok) {
       std::fprintf(stderr, "Error: scene %s: reference: %s\n", name.c_str(), ref.error.c_str());
       return 1;
@@ -481,8 +487,8 @@ int main(int argc, char** argv) {
         r.time_ms = ms[ms.size() / 2], r.frames = n, r.triangles = b.scene.triangle_count();
         score(mask, ref, band, r);
         rows.push_back(r);
-        std::printf("  %-10s %6s %10.3f %10.5f %10.5f\n", r.technique.c_str(), size ? std::to_string(size).c_str() : "-",
-                    r.time_ms, r.error_visible, r.error_boundary);
+        std::printf("  %-10s %6s %10.3f %10.5f %10.5f\n", r.technique.c_str(),
+                    size ? std::to_string(size).c_str() : "-", r.time_ms, r.error_visible, r.error_boundary);
         std::fflush(stdout);
       }
     }
@@ -505,13 +511,20 @@ int main(int argc, char** argv) {
            "boundary_pixels,frames,triangles\n";
     nlohmann::json results = nlohmann::json::array();
     for (const Row& r : rows) {
-      csv << r.scene << "," << r.technique << "," << r.size << "," << fmt("%.4f", r.time_ms) << "," << r.time_kind << ","
-          << fmt("%.6f", r.error_visible) << "," << fmt("%.6f", r.error_boundary) << "," << r.visible << ","
+      csv << r.scene << "," << r.technique << "," << r.size << "," << fmt("%.4f", r.time_ms) << "," << r.time_kind
+          << "," << fmt("%.6f", r.error_visible) << "," << fmt("%.6f", r.error_boundary) << "," << r.visible << ","
           << r.boundary << "," << r.frames << "," << r.triangles << "\n";
-      results.push_back({{"scene", r.scene}, {"technique", r.technique}, {"shadow_map_size", r.size},
-                         {"time_ms", r.time_ms}, {"time_kind", r.time_kind}, {"error_visible", r.error_visible},
-                         {"error_boundary", r.error_boundary}, {"visible_pixels", r.visible},
-                         {"boundary_pixels", r.boundary}, {"frames", r.frames}, {"triangles", r.triangles}});
+      results.push_back({{"scene", r.scene},
+                         {"technique", r.technique},
+                         {"shadow_map_size", r.size},
+                         {"time_ms", r.time_ms},
+                         {"time_kind", r.time_kind},
+                         {"error_visible", r.error_visible},
+                         {"error_boundary", r.error_boundary},
+                         {"visible_pixels", r.visible},
+                         {"boundary_pixels", r.boundary},
+                         {"frames", r.frames},
+                         {"triangles", r.triangles}});
     }
     std::ostringstream bcsv;
     bcsv << "triangles,method,seconds,triangles_per_second,peak_bytes,speed_vs_meshopt,memory_vs_meshopt\n";
@@ -521,18 +534,25 @@ int main(int argc, char** argv) {
       const geombench::BakeRow& mo = bake[i - i % 3 + 1];
       const double sp = r.triangles_per_second / std::max(1.0, mo.triangles_per_second);
       const double mem = mo.peak_bytes > 0 ? r.peak_bytes / mo.peak_bytes : 0.0;
-      bcsv << r.triangles << "," << r.method << "," << fmt("%.6f", r.seconds) << "," << fmt("%.0f", r.triangles_per_second)
-           << "," << fmt("%.0f", r.peak_bytes) << "," << fmt("%.3f", sp) << "," << fmt("%.3f", mem) << "\n";
-      bj.push_back({{"triangles", r.triangles}, {"method", r.method}, {"seconds", r.seconds},
-                    {"triangles_per_second", r.triangles_per_second}, {"peak_bytes", r.peak_bytes},
-                    {"speed_vs_meshopt", sp}, {"memory_vs_meshopt", mem}});
+      bcsv << r.triangles << "," << r.method << "," << fmt("%.6f", r.seconds) << ","
+           << fmt("%.0f", r.triangles_per_second) << "," << fmt("%.0f", r.peak_bytes) << "," << fmt("%.3f", sp) << ","
+           << fmt("%.3f", mem) << "\n";
+      bj.push_back({{"triangles", r.triangles},
+                    {"method", r.method},
+                    {"seconds", r.seconds},
+                    {"triangles_per_second", r.triangles_per_second},
+                    {"peak_bytes", r.peak_bytes},
+                    {"speed_vs_meshopt", sp},
+                    {"memory_vs_meshopt", mem}});
     }
     std::vector<std::string> tech_names;
     for (viewer::Technique t : techniques) tech_names.push_back(viewer::technique_name(t));
-    nlohmann::json j = {{"renderer", renderer}, {"timing", kind_text}, {"time_kind", kind},
-                        {"image", {{"width", width}, {"height", height}}}, {"quick", quick},
-                        {"shadow_map_sizes", sizes}, {"scenes", scenes_done}, {"skipped", skipped},
-                        {"results", results}, {"bake", bj}, {"best_at_budget", best}, {"goals", goal_lines}};
+    nlohmann::json j = {{"renderer", renderer},   {"timing", kind_text},
+                        {"time_kind", kind},      {"image", {{"width", width}, {"height", height}}},
+                        {"quick", quick},         {"shadow_map_sizes", sizes},
+                        {"scenes", scenes_done},  {"skipped", skipped},
+                        {"results", results},     {"bake", bj},
+                        {"best_at_budget", best}, {"goals", goal_lines}};
     std::ostringstream md;
     md << "# geombench summary\n\nrenderer: " << renderer << "; timing: " << kind_text << "; image " << width << "x"
        << height << "\n\n## Best technique at each time budget\n\n";

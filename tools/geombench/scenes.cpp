@@ -8,9 +8,8 @@
 
 #include <cmath>
 #include <fstream>
-#include <iterator>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <iterator>
 
 #include "geom/import.h"
 #include "geom/shadow_reference.h"
@@ -52,7 +51,8 @@ void add_ground(geom::Scene& s, float x0, float x1, float z0, float z1) {
 void add_box(geom::Scene& s, const glm::mat4& m) {
   const size_t first = s.triangle_count();
   uint32_t c[8];
-  for (int i = 0; i < 8; ++i) c[i] = add_vertex(s, glm::vec3(m * glm::vec4(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1, 1)));
+  for (int i = 0; i < 8; ++i)
+    c[i] = add_vertex(s, glm::vec3(m * glm::vec4(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1, 1)));
   const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
   for (const auto& q : faces) s.indices.insert(s.indices.end(), {c[q[0]], c[q[1]], c[q[2]], c[q[0]], c[q[2]], c[q[3]]});
   tag_from(s, first);
@@ -66,7 +66,8 @@ glm::mat4 box_at(glm::vec3 centre, glm::vec3 half, float yaw_deg = 0) {
 void add_pipe(geom::Scene& s, glm::vec3 a, glm::vec3 b, float radius, int segments) {
   const size_t first = s.triangle_count();
   const glm::vec3 axis = glm::normalize(b - a);
-  const glm::vec3 u = glm::normalize(glm::cross(axis, std::fabs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+  const glm::vec3 u =
+      glm::normalize(glm::cross(axis, std::fabs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
   const glm::vec3 v = glm::cross(axis, u);
   const uint32_t ca = add_vertex(s, a), cb = add_vertex(s, b), ring = uint32_t(s.vertex_count());
   for (int i = 0; i < segments; ++i) {
@@ -220,8 +221,8 @@ bool quake3(BenchScene& b, std::string& error) {
     c.fovy_deg = v.fovy_deg, c.near_plane = v.near_plane, c.far_plane = v.far_plane, c.width = 64, c.height = 48;
     geom::ReferenceLight l;
     for (int k = 0; k < 4; ++k) l.position[k] = b.light.position[k];
-    const geom::ShadowReference ref =
-        geom::shadow_reference(geom::positions_of(s.positions.data(), s.vertex_count()), s.indices.data(), s.indices.size(), c, l);
+    const geom::ShadowReference ref = geom::shadow_reference(geom::positions_of(s.positions.data(), s.vertex_count()),
+                                                             s.indices.data(), s.indices.size(), c, l);
     if (!ref.ok) continue;
     size_t lit = 0, dark = 0, none = 0;
     for (uint8_t m : ref.mask) (m == 255 ? lit : m == 0 ? dark : none)++;
@@ -316,7 +317,8 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
   } else if (name == "grazing") {
     add_ground(b.scene, -10, 10, -10, 10);
     for (int i = 0; i < 12; ++i)
-      add_box(b.scene, box_at({-6.0f + float(i % 4) * 4, 0.5f, -4.0f + float(i / 4) * 4}, {0.5f, 0.5f, 0.5f}, float(i * 17)));
+      add_box(b.scene,
+              box_at({-6.0f + float(i % 4) * 4, 0.5f, -4.0f + float(i / 4) * 4}, {0.5f, 0.5f, 0.5f}, float(i * 17)));
     b.light = directional({1, 0.0525f, 0.3f});
     b.hard = true;
     b.description = "blocks on a ground, directional light 3 degrees above it";
