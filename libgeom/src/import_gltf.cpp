@@ -842,10 +842,13 @@ void decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& prim,
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(bytes), view.byteLength);
   draco::Decoder decoder;
+  draco_guard_refusal();  // libdraco runs draco_guard.cpp's bounded texture-coordinate decoders
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-  if (!decoded.ok())
-    refuse(what + ": Draco data in bufferView " + std::to_string(ref.buffer_view) +
-           " cannot be decoded: " + decoded.status().error_msg_string());
+  if (!decoded.ok()) {
+    const std::string guard = draco_guard_refusal();
+    refuse(what + ": Draco data in bufferView " + std::to_string(ref.buffer_view) + " cannot be decoded: " +
+           (guard.empty() ? decoded.status().error_msg_string() : guard));
+  }
   const draco::Mesh& mesh = *decoded.value();
   const draco::PointAttribute* att = mesh.GetAttributeByUniqueId(uint32_t(ref.position_id));
   if (!att)

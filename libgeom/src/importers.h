@@ -5,6 +5,7 @@
 // offset against the bytes before allocating or reading.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "geom/import.h"
@@ -26,5 +27,13 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error);
 bool import_stl(const ImportInput& in, Scene& out, std::string& error);
 bool import_bsp(const ImportInput& in, Scene& out, std::string& error);
 bool import_md3(const ImportInput& in, Scene& out, std::string& error);
+
+// draco_guard.cpp: libdraco's texture-coordinate decoders with their orientation
+// count bounded. draco_guard_refusal() returns (and clears) why the guard last
+// refused on this thread, "" if it did not; draco_guard_checks(i) counts the counts
+// checked by instantiation i: 0 portable / 1 deprecated scheme on the position
+// corner table, 2 / 3 on an attribute corner table.
+std::string draco_guard_refusal();
+uint64_t draco_guard_checks(int which);
 
 }  // namespace geom::detail
