@@ -33,6 +33,14 @@ const std::map<std::string, Finding> kFindings = {
      {"out of memory: 325 bytes (Draco 1.1 Edgebreaker) claiming 808,464,432 faces and vertices, which "
       "libdraco allocated and filled before reading them (19 GB, 46 s through geombake)",
       "claims 808464432 faces"}},
+    {"draco/texcoord_orientations.drc",
+     {"timeout: 393 bytes whose texture-coordinate prediction claims 1,329,807,698 orientations, which libdraco "
+      "allocated and looped over before noticing the data is missing (29 s through geombake)",
+      "texture-coordinate prediction claims 1329807698 orientations for 36 corners"}},
+    {"draco/metadata_flag_v1_1.drc",
+     {"out of memory: 41 bytes (Draco 1.1 Edgebreaker) with the metadata flag set, which Draco ignores before "
+      "1.3 and the count check read as metadata, so its billion faces went unchecked (malloc of 4.6 GB)",
+      "faces and"}},
 };
 
 }  // namespace

@@ -783,13 +783,16 @@ void assemble(const std::vector<float>& positions, const std::vector<uint32_t>& 
   d.triangles = true;
 }
 
-// Draco (Debian's 1.5.5) allocates, and fills, the face and vertex counts its
-// connectivity header declares before it reads the data they need: 325 bytes
-// claiming 808 million faces took 19 GB and 46 s (found by fuzz/fuzz_draco).
-// So the counts are read here first, as Draco reads them (header, metadata,
-// then sequential: faces, points; Edgebreaker: traversal type, [new vertices
-// before 2.2], vertices, faces; u32 before 2.0, varints after), and each must
-// fit the stream: real streams hold under one face per byte (0.02 to 0.6 in
+// Draco (Debian's 1.5.5) allocates, and fills, the counts its connectivity
+// header declares before it reads the data they need: 325 bytes claiming 808
+// million faces took 19 GB and 46 s, 41 bytes claiming a billion faces asked for
+// 4.6 GB (both found by fuzz/fuzz_draco). So the counts are read here first, as
+// Draco reads them (mesh_edgebreaker_decoder_impl.cc, mesh_sequential_decoder.cc):
+// header; metadata when the flag is set and the version is 1.3 or later;
+// sequential: faces, points (u32 before 2.2, varints after); Edgebreaker:
+// traversal type, new vertices (before 2.2), vertices, faces, attribute data,
+// symbols, split symbols (u32 before 2.0, varints after). Each must fit the
+// stream: real streams hold under one face per byte (0.02 to 0.6 in
 // google/draco's test data), so over kMaxDracoCountPerByte per byte is refused.
 // Returns "" when the counts fit or are not a mesh's (Draco refuses those itself).
 constexpr uint64_t kMaxDracoCountPerByte = 64;
@@ -801,24 +804,24 @@ std::string draco_counts_problem(const unsigned char* data, size_t size) {
   if (header.encoder_type != draco::TRIANGULAR_MESH) return "";
   const uint16_t version = uint16_t(header.version_major << 8 | header.version_minor);
   buffer.set_bitstream_version(version);
-  if (header.flags & METADATA_FLAG_MASK) {
+  if (version >= 0x103 && (header.flags & METADATA_FLAG_MASK)) {
     draco::GeometryMetadata metadata;
     if (!draco::MetadataDecoder().DecodeGeometryMetadata(&buffer, &metadata)) return "";
   }
   auto count = [&](uint32_t& v) {
     return version < 0x200 ? buffer.Decode(&v) : draco::DecodeVarint<uint32_t>(&v, &buffer);
   };
-  uint32_t faces = 0, vertices = 0;
+  uint32_t faces = 0, vertices = 0, symbols = 0, split_symbols = 0;
   if (header.encoder_method == draco::MESH_SEQUENTIAL_ENCODING) {
     if (version < 0x202
             ? !(buffer.Decode(&faces) && buffer.Decode(&vertices))
             : !(draco::DecodeVarint<uint32_t>(&faces, &buffer) && draco::DecodeVarint<uint32_t>(&vertices, &buffer)))
       return "";
   } else if (header.encoder_method == draco::MESH_EDGEBREAKER_ENCODING) {
-    uint8_t traversal = 0;
+    uint8_t traversal = 0, attribute_data = 0;
     uint32_t new_vertices = 0;
-    if (!buffer.Decode(&traversal) || (version < 0x202 && !buffer.Decode(&new_vertices)) || !count(vertices) ||
-        !count(faces))
+    if (!buffer.Decode(&traversal) || (version < 0x202 && !count(new_vertices)) || !count(vertices) ||
+        !count(faces) || !buffer.Decode(&attribute_data) || !count(symbols) || !count(split_symbols))
       return "";
   } else {
     return "";
@@ -827,6 +830,10 @@ std::string draco_counts_problem(const unsigned char* data, size_t size) {
   if (faces > limit || vertices > limit)
     return "the Draco stream claims " + std::to_string(faces) + " faces and " + std::to_string(vertices) +
            " vertices in " + std::to_string(size) + " bytes (at most " + std::to_string(kMaxDracoCountPerByte) +
+           " per byte)";
+  if (symbols > limit || split_symbols > limit)
+    return "the Draco stream claims " + std::to_string(symbols) + " symbols and " + std::to_string(split_symbols) +
+           " split symbols in " + std::to_string(size) + " bytes (at most " + std::to_string(kMaxDracoCountPerByte) +
            " per byte)";
   return "";
 }
