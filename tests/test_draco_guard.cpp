@@ -21,8 +21,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -78,9 +78,10 @@ std::string encode(const draco::Mesh& mesh, int speed) {
   encoder.SetSpeedOptions(speed, speed);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 14);
   encoder.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
-  EXPECT_TRUE(encoder.SetAttributePredictionScheme(draco::GeometryAttribute::TEX_COORD,
-                                                   draco::MESH_PREDICTION_TEX_COORDS_PORTABLE)
-                  .ok());
+  EXPECT_TRUE(
+      encoder
+          .SetAttributePredictionScheme(draco::GeometryAttribute::TEX_COORD, draco::MESH_PREDICTION_TEX_COORDS_PORTABLE)
+          .ok());
   draco::EncoderBuffer out;
   const draco::Status s = encoder.EncodeMeshToBuffer(mesh, &out);
   EXPECT_TRUE(s.ok()) << s.error_msg_string();
@@ -120,7 +121,8 @@ void expect_same_corners(const std::vector<Corner>& original, const std::vector<
     for (int k = 0; k < 2; ++k) ulo[k] = std::min(ulo[k], c.uv[k]), uhi[k] = std::max(uhi[k], c.uv[k]);
   }
   // Draco quantises over the largest extent, 1 where it is 0.
-  float extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}), uv_extent = std::max(uhi[0] - ulo[0], uhi[1] - ulo[1]);
+  float extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}),
+        uv_extent = std::max(uhi[0] - ulo[0], uhi[1] - ulo[1]);
   if (extent <= 0) extent = 1;
   if (uv_extent <= 0) uv_extent = 1;
   const float step = extent / float((1 << 14) - 1), cell = 4 * step, uv_step = uv_extent / float((1 << 12) - 1);
@@ -129,11 +131,14 @@ void expect_same_corners(const std::vector<Corner>& original, const std::vector<
   };
   size_t sound = 0;  // original faces no quantisation can collapse
   for (size_t f = 0; f + 2 < original.size(); f += 3)
-    sound += !(near(original[f].p, original[f + 1].p, 2 * step) || near(original[f + 1].p, original[f + 2].p, 2 * step) ||
-               near(original[f + 2].p, original[f].p, 2 * step));
+    sound +=
+        !(near(original[f].p, original[f + 1].p, 2 * step) || near(original[f + 1].p, original[f + 2].p, 2 * step) ||
+          near(original[f + 2].p, original[f].p, 2 * step));
   EXPECT_LE(decoded.size(), original.size());
   EXPECT_GE(decoded.size(), 3 * sound);
-  auto key = [](int x, int y, int z) { return (int64_t(x) * 73856093) ^ (int64_t(y) * 19349663) ^ (int64_t(z) * 83492791); };
+  auto key = [](int x, int y, int z) {
+    return (int64_t(x) * 73856093) ^ (int64_t(y) * 19349663) ^ (int64_t(z) * 83492791);
+  };
   auto cellof = [&](float v, int k) { return int(std::floor((v - lo[k]) / cell)); };
   std::unordered_multimap<int64_t, size_t> grid;
   for (size_t i = 0; i < original.size(); ++i)
@@ -296,8 +301,9 @@ TEST(DracoGuard, SharedStreams) {
     ++with_texcoords;
     EXPECT_GE(absurd_windows(stream), 1u);
   }
-  for (int i = 0; i < 4; ++i) std::printf("guard instantiation %d checked %llu counts\n", i,
-                                          static_cast<unsigned long long>(geom::detail::draco_guard_checks(i)));
+  for (int i = 0; i < 4; ++i)
+    std::printf("guard instantiation %d checked %llu counts\n", i,
+                static_cast<unsigned long long>(geom::detail::draco_guard_checks(i)));
   EXPECT_GE(with_texcoords, 1u);
 }
 

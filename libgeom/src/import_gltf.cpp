@@ -820,8 +820,8 @@ std::string draco_counts_problem(const unsigned char* data, size_t size) {
   } else if (header.encoder_method == draco::MESH_EDGEBREAKER_ENCODING) {
     uint8_t traversal = 0, attribute_data = 0;
     uint32_t new_vertices = 0;
-    if (!buffer.Decode(&traversal) || (version < 0x202 && !count(new_vertices)) || !count(vertices) ||
-        !count(faces) || !buffer.Decode(&attribute_data) || !count(symbols) || !count(split_symbols))
+    if (!buffer.Decode(&traversal) || (version < 0x202 && !count(new_vertices)) || !count(vertices) || !count(faces) ||
+        !buffer.Decode(&attribute_data) || !count(symbols) || !count(split_symbols))
       return "";
   } else {
     return "";
@@ -853,8 +853,8 @@ void decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& prim,
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok()) {
     const std::string guard = draco_guard_refusal();
-    refuse(what + ": Draco data in bufferView " + std::to_string(ref.buffer_view) + " cannot be decoded: " +
-           (guard.empty() ? decoded.status().error_msg_string() : guard));
+    refuse(what + ": Draco data in bufferView " + std::to_string(ref.buffer_view) +
+           " cannot be decoded: " + (guard.empty() ? decoded.status().error_msg_string() : guard));
   }
   const draco::Mesh& mesh = *decoded.value();
   const draco::PointAttribute* att = mesh.GetAttributeByUniqueId(uint32_t(ref.position_id));
