@@ -13,6 +13,7 @@
 //   - the limits: --max-triangles, --max-memory, --timeout, each refusing the
 //     input concerned with a message naming the limit while the others bake.
 #include <gtest/gtest.h>
+
 #include <pty.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -104,8 +105,7 @@ TEST(BatchBake, ByteIdenticalAcrossRunsAndThreadCounts) {
     EXPECT_FALSE(cli::sanitizer_report(r.err));
     // The report names the output paths: compare it with this run's folder named WORK.
     std::string json = r.out;
-    for (size_t at; (at = json.find(work.string())) != std::string::npos;)
-      json.replace(at, work.string().size(), "WORK");
+    for (size_t at; (at = json.find(work.string())) != std::string::npos;) json.replace(at, work.string().size(), "WORK");
     std::map<std::string, std::string> now = contents(work / "out");
     ASSERT_EQ(now.size(), inputs.size()) << "-j " << j;
     for (const auto& [name, bytes] : now) EXPECT_GT(bytes.size(), 64u) << name;
@@ -126,8 +126,8 @@ TEST(BatchBake, FailingInputsAmongGoodOnes) {
   const std::string nan_obj = (work / "nan.obj").string(), missing = (work / "missing.ply").string();
   std::ofstream(nan_obj) << "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n";
   const std::string good1 = kData + "/draco/cube_att.obj", good2 = kAssimp + "/OFF/Wuson.off";
-  cli::Run r =
-      cli::run({"bake", good1, nan_obj, good2, missing, "-j", "2", "-o", (work / "out").string()}, work / "log");
+  cli::Run r = cli::run({"bake", good1, nan_obj, good2, missing, "-j", "2", "-o", (work / "out").string()},
+                        work / "log");
   SCOPED_TRACE(cli::describe(r));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("Error: " + nan_obj + ": "), std::string::npos);
@@ -148,11 +148,10 @@ TEST(BatchBake, ListFileAndDirectory) {
   fs::copy_file(kData + "/draco/cube_att.obj", work / "dir" / "a.obj");
   fs::copy_file(kData + "/draco/Box.ply", work / "dir" / "b.ply");
   std::ofstream(work / "dir" / "notes.txt") << "not a mesh\n";
-  std::ofstream(work / "list.txt") << "# inputs\n"
-                                   << kAssimp + "/OFF/Cube.off\n\n  " << kData + "/draco/test_nm.obj  \n";
-  cli::Run r =
-      cli::run({"bake", "--list", (work / "list.txt").string(), (work / "dir").string(), "-o", (work / "out").string()},
-               work / "log");
+  std::ofstream(work / "list.txt") << "# inputs\n" << kAssimp + "/OFF/Cube.off\n\n  " << kData + "/draco/test_nm.obj  \n";
+  cli::Run r = cli::run({"bake", "--list", (work / "list.txt").string(), (work / "dir").string(), "-o",
+                         (work / "out").string()},
+                        work / "log");
   SCOPED_TRACE(cli::describe(r));
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(cli::listing(work / "out"),
@@ -226,15 +225,8 @@ TEST(BatchBake, NinjaAndMakeRebuildFromTheDepfile) {
 // The progress display appears on a terminal (a pseudo-terminal here).
 TEST(BatchBake, ProgressOnATerminal) {
   fs::path work = scratch("pty");
-  std::vector<std::string> args = {cli::geombake_path(),
-                                   "bake",
-                                   "-j",
-                                   "2",
-                                   "-o",
-                                   (work / "out").string(),
-                                   kData + "/draco/cube_att.obj",
-                                   kData + "/draco/Box.ply",
-                                   kAssimp + "/OFF/Cube.off"};
+  std::vector<std::string> args = {cli::geombake_path(), "bake", "-j", "2", "-o", (work / "out").string(),
+                                   kData + "/draco/cube_att.obj", kData + "/draco/Box.ply", kAssimp + "/OFF/Cube.off"};
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -277,8 +269,7 @@ TEST(BatchBake, MaxTriangles) {
 // fit; the message gives the limit in bytes.
 TEST(BatchBake, MaxMemory) {
   fs::path work = scratch("maxmem");
-  const std::string small = kData + "/draco/cube_att.obj",
-                    big = kAssimp + "/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  const std::string small = kData + "/draco/cube_att.obj", big = kAssimp + "/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
   cli::Run r = cli::run({"bake", small, big, "--max-memory", "3M", "-o", (work / "out").string()}, work / "log");
   SCOPED_TRACE(cli::describe(r));
   EXPECT_EQ(r.exit_code, 1);
@@ -306,8 +297,8 @@ TEST(BatchBake, Timeout) {
   fs::path work = scratch("timeout");
   const std::string small = kData + "/draco/cube_att.obj";
   const std::string slow = kMaps + ":maps/oa_ctf2.bsp";  // ~100k triangles: far more than a millisecond
-  cli::Run r =
-      cli::run({"bake", small, slow, "--timeout", "0.001", "-j", "1", "-o", (work / "out").string()}, work / "log");
+  cli::Run r = cli::run({"bake", small, slow, "--timeout", "0.001", "-j", "1", "-o", (work / "out").string()},
+                        work / "log");
   SCOPED_TRACE(cli::describe(r));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("Error: " + slow + ": timed out after 0.001 s (--timeout)"), std::string::npos);

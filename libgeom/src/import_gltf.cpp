@@ -785,7 +785,7 @@ void assemble(const std::vector<float>& positions, const std::vector<uint32_t>& 
 
 // Draco (Debian's 1.5.5) allocates, and fills, the counts its connectivity
 // header declares before it reads the data they need: 325 bytes claiming 808
-// million faces took 19 GB and 46 s, 41 bytes claiming a billion faces asked for
+// million faces took 19 GB and 46 s, 41 bytes claiming 1.1 billion faces asked for
 // 4.6 GB (both found by fuzz/fuzz_draco). So the counts are read here first, as
 // Draco reads them (mesh_edgebreaker_decoder_impl.cc, mesh_sequential_decoder.cc):
 // header; metadata when the flag is set and the version is 1.3 or later;
