@@ -48,9 +48,9 @@ std::array<std::atomic<uint64_t>, 4> guard_checks{};  // per instantiation, for 
 thread_local std::string guard_refusal;               // why the last refusal, on this thread
 
 // True when the count fits; otherwise notes why for draco_guard_refusal().
-bool draco_guard_check(int which, uint64_t orientations, const void* corner_table, uint64_t corners) {
+bool draco_guard_check(int which, uint64_t orientations, uint64_t corners) {
   guard_checks[size_t(which)].fetch_add(1, std::memory_order_relaxed);
-  if (corner_table && orientations <= corners) return true;
+  if (orientations <= corners) return true;
   guard_refusal = "its texture-coordinate prediction claims " + std::to_string(orientations) + " orientations for " +
                   std::to_string(corners) + " corners";
   return false;
@@ -73,7 +73,7 @@ template <class MeshDataT, class Resize, class Set>
 bool decode_orientations(uint64_t count, const MeshDataT& mesh_data, int which, DecoderBuffer* buffer, Resize resize,
                          Set set) {
   const auto* table = mesh_data.corner_table();
-  if (!geom::detail::draco_guard_check(which, count, table, table ? uint64_t(table->num_corners()) : 0)) return false;
+  if (!geom::detail::draco_guard_check(which, count, table ? uint64_t(table->num_corners()) : 0)) return false;
   resize(count);
   bool last_orientation = true;
   RAnsBitDecoder decoder;

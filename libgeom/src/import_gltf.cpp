@@ -827,15 +827,13 @@ std::string draco_counts_problem(const unsigned char* data, size_t size) {
     return "";
   }
   const uint64_t limit = kMaxDracoCountPerByte * uint64_t(size);
-  if (faces > limit || vertices > limit)
-    return "the Draco stream claims " + std::to_string(faces) + " faces and " + std::to_string(vertices) +
-           " vertices in " + std::to_string(size) + " bytes (at most " + std::to_string(kMaxDracoCountPerByte) +
-           " per byte)";
-  if (symbols > limit || split_symbols > limit)
-    return "the Draco stream claims " + std::to_string(symbols) + " symbols and " + std::to_string(split_symbols) +
-           " split symbols in " + std::to_string(size) + " bytes (at most " + std::to_string(kMaxDracoCountPerByte) +
-           " per byte)";
-  return "";
+  auto over = [&](uint32_t a, const char* a_name, uint32_t b, const char* b_name) -> std::string {
+    if (a <= limit && b <= limit) return "";
+    return "the Draco stream claims " + std::to_string(a) + " " + a_name + " and " + std::to_string(b) + " " + b_name +
+           " in " + std::to_string(size) + " bytes (at most " + std::to_string(kMaxDracoCountPerByte) + " per byte)";
+  };
+  std::string problem = over(faces, "faces", vertices, "vertices");
+  return problem.empty() ? over(symbols, "symbols", split_symbols, "split symbols") : problem;
 }
 
 void decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& prim, const DracoRef& ref,

@@ -13,7 +13,7 @@
 namespace geom::detail {
 
 struct ImportInput {
-  std::string name;      // file name as given (for messages and Scene::files)
+  std::string name;  // file name as given (for messages and Scene::files)
   const unsigned char* data = nullptr;
   size_t size = 0;
   std::string base_dir;  // for relative URIs; may be empty
