@@ -10,10 +10,10 @@
 //                          \  /         wall, a light behind the viewer
 //                           \/          casting their shadows onto it
 //                           /\.
-#include "test_gl_common.h"
+#include "gl_fixtures.h"
 
 using namespace gltest;
-using viewer::Technique;
+using render::Technique;
 
 namespace {
 
@@ -33,30 +33,23 @@ geom::Scene crossed_pipes() {
   return s;
 }
 
-viewer::View front_view() {
-  viewer::View v;
-  v.eye = {0.5f, 2.0f, 6.5f};
-  v.target = {0, 1.7f, -2.0f};  // the crossing of the pipes' shadows on the wall
-  v.fovy_deg = 24;
-  v.near_plane = 0.1f;
-  v.far_plane = 100;
-  v.width = 240, v.height = 180;
-  return v;
+geom::Camera front_view() {  // the crossing of the pipes' shadows on the wall
+  return camera({0.5f, 2.0f, 6.5f}, {0, 1.7f, -2.0f}, 24, 0.1f, 100, 240, 180);
 }
 
-std::vector<viewer::LightSetup> lights() {
-  std::vector<viewer::LightSetup> out;
-  viewer::LightSetup point;
-  point.position = glm::vec4(1.5f, 4.0f, 9.0f, 1);
+std::vector<geom::Light> lights() {
+  std::vector<geom::Light> out;
+  geom::Light point;
+  point = point_light({1.5f, 4.0f, 9.0f});
   out.push_back(point);
-  viewer::LightSetup spot = point;
-  spot.position = glm::vec4(-1.0f, 5.0f, 8.5f, 1);
-  spot.spot = true;
-  spot.spot_direction = glm::vec3(0.5f, -3.0f, -9.0f);
-  spot.spot_angle_deg = 25;
+  geom::Light spot = point;
+  spot = point_light({-1.0f, 5.0f, 8.5f});
+  spot.type = geom::LightType::Spot;
+  for (int k = 0; k < 3; ++k) spot.direction[k] = glm::vec3(0.5f, -3.0f, -9.0f)[k];
+  spot.outer_cone = 25 * M_PI / 180;
   out.push_back(spot);
-  viewer::LightSetup dir;
-  dir.position = glm::vec4(0.3f, 0.5f, 1.0f, 0);
+  geom::Light dir;
+  dir = sun({0.3f, 0.5f, 1.0f});
   out.push_back(dir);
   return out;
 }
@@ -66,11 +59,11 @@ TEST(GlEdgeShadowMaps, CloserToTheReferenceThanTheSimpleShadowMap) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = crossed_pipes();
   std::string error;
-  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
   for (int size : {96, 160}) {
     size_t ssm = 0, edsm = 0, esm = 0, shadowed = 0;
-    for (const viewer::LightSetup& l : lights()) {
+    for (const geom::Light& l : lights()) {
       const Comparison s = render_and_compare(*state, scene, front_view(), l, Technique::Ssm, size);
       ssm += s.wrong, shadowed += s.shadowed;
       edsm += render_and_compare(*state, scene, front_view(), l, Technique::Edsm, size).wrong;
@@ -90,12 +83,12 @@ TEST(GlEdgeShadowMaps, AgreeWithTheReferenceAtALargeMapSize) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = crossed_pipes();
   std::string error;
-  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  for (const viewer::LightSetup& l : lights())
+  for (const geom::Light& l : lights())
     for (Technique t : {Technique::Edsm, Technique::Esm}) {
       const Comparison c = render_and_compare(*state, scene, front_view(), l, t, 1024);
-      SCOPED_TRACE(viewer::technique_name(t));
+      SCOPED_TRACE(render::technique_name(t));
       EXPECT_LT(c.error(), 0.005) << c.wrong << " of " << c.certain;
     }
 }

@@ -4,10 +4,10 @@
 #include <chrono>
 #include <cstdio>
 
+#include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/import.h"
 #include "geom/report.h"
-#include "geombake/args.h"
 #include "geombake/command.h"
 #include "geombake/inputs.h"
 
@@ -29,8 +29,8 @@ const char* kInfoHelp =
     "  --max-triangles N   refuse inputs with more triangles\n";
 
 int run_info(const std::vector<std::string>& argv) {
-  Args args(argv, {"--json", "-v", "--help", "-h"},
-            {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles"});
+  cli::Args args(argv, {"--json", "-v", "--help", "-h"},
+                 {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kInfoHelp, stdout);
     return 0;

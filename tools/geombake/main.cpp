@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/args.h"
 #include "geombake/command.h"
 
 namespace geombake {
@@ -31,7 +32,7 @@ static void usage(FILE* f) {
 int main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? stderr : stdout);
-    return argc < 2 ? 2 : 0;
+    return argc < 2 ? cli::kExitUsage : cli::kExitOk;
   }
   for (const auto& c : geombake::commands()) {
     if (c.name == std::string(argv[1])) {
@@ -39,12 +40,12 @@ int main(int argc, char** argv) {
       try {
         return c.run(args);
       } catch (const std::exception& e) {
-        std::fprintf(stderr, "Error: %s\n", e.what());
-        return 1;
+        cli::error("%s", e.what());
+        return cli::kExitFailure;
       }
     }
   }
-  std::fprintf(stderr, "Error: unknown command '%s'\n", argv[1]);
+  cli::error("unknown command '%s'", argv[1]);
   usage(stderr);
-  return 2;
+  return cli::kExitUsage;
 }

@@ -4,7 +4,7 @@
 //   geombench [--quick] [-o DIR] [--scenes a,b] [--techniques a,b] [--sizes 256,512]
 //             [--size WxH] [--frames N] [--no-bake] [--no-render]
 //
-// For each scene (scenes.h), technique (viewer::available_techniques(), the
+// For each scene (scenes.h), technique (render::available_techniques(), the
 // viewer's names) and shadow-map size (256 ... 4096; one row with size 0 for
 // the shadow volumes, which have no map):
 //  - time_ms: the technique's shadow passes of one frame (every pass but the
@@ -41,10 +41,10 @@
 #include <sstream>
 
 #include "bake_throughput.h"
+#include "cli/args.h"
 #include "geom/shadow_reference.h"
-#include "geombake/args.h"
-#include "platform.h"
-#include "renderer.h"
+#include "render/platform.h"
+#include "render/render.h"
 #include "scenes.h"
 
 namespace {
@@ -66,30 +66,9 @@ std::vector<std::string> split(const std::string& s) {
   return out;
 }
 
-bool has_map(viewer::Technique t) {
-  return t != viewer::Technique::Sv && t != viewer::Technique::SvZPass && t != viewer::Technique::SvZFail;
-}
-
 bool is_shadow_pass(const std::string& pass) {
   return pass != "depth + ambient" && pass != "lit shading" && pass != "shading" && pass != "inspection" &&
          pass.rfind("silhouette buffers", 0) != 0;
-}
-
-geom::ReferenceCamera to_reference(const viewer::View& v) {
-  geom::ReferenceCamera c;
-  for (int k = 0; k < 3; ++k) c.eye[k] = v.eye[k], c.target[k] = v.target[k], c.up[k] = v.up[k];
-  c.fovy_deg = v.fovy_deg, c.near_plane = v.near_plane, c.far_plane = v.far_plane;
-  c.width = v.width, c.height = v.height;
-  return c;
-}
-
-geom::ReferenceLight to_reference(const viewer::LightSetup& l) {
-  geom::ReferenceLight r;
-  for (int k = 0; k < 4; ++k) r.position[k] = l.position[k];
-  r.spot = l.spot;
-  for (int k = 0; k < 3; ++k) r.spot_direction[k] = l.spot_direction[k];
-  r.spot_angle_deg = l.spot_angle_deg;
-  return r;
 }
 
 // 1 for pixels within `radius` (Chebyshev) of a lit pixel touching a shadowed one.
@@ -343,19 +322,19 @@ bool write_text(const std::string& path, const std::string& text) {
 }
 
 int usage(const std::string& error) {
-  if (!error.empty()) std::fprintf(stderr, "Error: %s\n", error.c_str());
+  if (!error.empty()) cli::error("%s", error.c_str());
   std::fprintf(error.empty() ? stdout : stderr,
                "usage: geombench [--quick] [-o DIR] [--scenes a,b] [--techniques a,b] [--sizes 256,1024]\n"
                "                 [--size WxH] [--frames N] [--no-bake] [--no-render]\n");
-  return error.empty() ? 0 : 2;
+  return error.empty() ? cli::kExitOk : cli::kExitUsage;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  geombake::Args args(std::vector<std::string>(argv + 1, argv + argc),
-                      {"--quick", "--no-bake", "--no-render", "-h", "--help"},
-                      {"-o", "--scenes", "--techniques", "--sizes", "--size", "--frames", "--shaders"});
+  cli::Args args(std::vector<std::string>(argv + 1, argv + argc),
+                 {"--quick", "--no-bake", "--no-render", "-h", "--help"},
+                 {"-o", "--scenes", "--techniques", "--sizes", "--size", "--frames", "--shaders"});
   if (!args.error().empty()) return usage(args.error());
   if (args.has("-h") || args.has("--help")) return usage("");
   if (!args.positional().empty()) return usage("unexpected argument '" + args.positional()[0] + "'");
@@ -377,16 +356,16 @@ int main(int argc, char** argv) {
   }
   std::vector<std::string> scene_list = quick ? geombench::quick_scene_names() : geombench::scene_names();
   if (args.has("--scenes")) scene_list = split(args.get("--scenes"));
-  std::vector<viewer::Technique> techniques = viewer::available_techniques();
+  std::vector<render::Technique> techniques = render::available_techniques();
   if (args.has("--techniques")) {
     techniques.clear();
     for (const std::string& v : split(args.get("--techniques"))) {
-      viewer::Technique t;
-      if (!viewer::parse_technique(v, t)) return usage("unknown technique '" + v + "'");
+      render::Technique t;
+      if (!render::parse_technique(v, t)) return usage("unknown technique '" + v + "'");
       techniques.push_back(t);
     }
   }
-  std::string shader_dir = GEOMVIEW_SHADER_DIR;
+  std::string shader_dir = GEOM_SHADER_DIR;
   if (const char* e = std::getenv("GEOMVIEW_SHADERS")) shader_dir = e;
   if (args.has("--shaders")) shader_dir = args.get("--shaders");
   const std::string out_dir = args.get("-o");
@@ -414,39 +393,39 @@ int main(int argc, char** argv) {
   std::set<std::string> hard;
   std::vector<std::string> scenes_done, skipped;
   std::string renderer, kind_text, kind = "wall";
-  std::unique_ptr<viewer::Platform> platform;
+  std::unique_ptr<render::Platform> platform;
   if (!args.has("--no-render")) {
     std::string note, error;
-    platform = viewer::Platform::open(false, width, height, "geombench", note, error);
+    platform = render::Platform::open(false, width, height, "geombench", note, error);
     if (!platform) {
-      std::fprintf(stderr, "Error: no OpenGL context: %s\n", error.c_str());
-      return 1;
+      cli::error("no OpenGL context: %s", error.c_str());
+      return cli::kExitFailure;
     }
   }
   for (const std::string& name : platform ? scene_list : std::vector<std::string>{}) {
     geombench::BenchScene b;
     std::string error;
     if (!geombench::make_scene(name, b, error)) {
-      std::fprintf(stderr, "Warning: scene %s skipped: %s\n", name.c_str(), error.c_str());
+      cli::warning("scene %s skipped: %s", name.c_str(), error.c_str());
       skipped.push_back(name + ": " + error);
       continue;
     }
-    viewer::StatePtr state = viewer::create_state(b.scene, shader_dir, error);
+    render::StatePtr state = render::create_state(b.scene, shader_dir, error);
     if (!state) {
-      std::fprintf(stderr, "Error: scene %s: %s\n", name.c_str(), error.c_str());
-      return 1;
+      cli::error("scene %s: %s", name.c_str(), error.c_str());
+      return cli::kExitFailure;
     }
-    renderer = viewer::renderer_name(*state);
-    kind_text = viewer::timing_kind(*state);
+    renderer = render::renderer_name(*state);
+    kind_text = render::timing_kind(*state);
     kind = kind_text.find("GPU") != std::string::npos ? "gpu" : "wall";
-    viewer::View view = b.default_view ? viewer::default_view(*state, width, height) : b.view;
+    geom::Camera view = b.default_view ? render::default_view(*state, width, height) : b.view;
     view.width = width, view.height = height;
-    const geom::ShadowReference ref = geom::shadow_reference(
-        geom::positions_of(b.scene.positions.data(), b.scene.vertex_count()), b.scene.indices.data(),
-        b.scene.indices.size(), to_reference(view), to_reference(b.light));
+    const geom::ShadowReference ref =
+        geom::shadow_reference(geom::positions_of(b.scene.positions.data(), b.scene.vertex_count()),
+                               b.scene.indices.data(), b.scene.indices.size(), view, b.light);
     if (!ref.ok) {
-      std::fprintf(stderr, "Error: scene %s: reference: %s\n", name.c_str(), ref.error.c_str());
-      return 1;
+      cli::error("scene %s: reference: %s", name.c_str(), ref.error.c_str());
+      return cli::kExitFailure;
     }
     const std::vector<uint8_t> band = boundary_band(ref, 3);
     scenes_done.push_back(name);
@@ -454,36 +433,36 @@ int main(int argc, char** argv) {
     std::printf("\n%s: %s; %zu triangles; %dx%d; %s\n", name.c_str(), b.description.c_str(), b.scene.triangle_count(),
                 width, height, kind_text.c_str());
     std::printf("  %-10s %6s %10s %10s %10s\n", "technique", "map", "time ms", "err vis", "err bnd");
-    for (viewer::Technique t : techniques) {
-      if (t == viewer::Technique::Cube && b.light.position.w == 0) {
-        std::printf("  %-10s (needs a point or spot light: not measured)\n", viewer::technique_name(t));
+    for (render::Technique t : techniques) {
+      if (render::technique_needs_point_light(t) && b.light.type == geom::LightType::Directional) {
+        std::printf("  %-10s (needs a point or spot light: not measured)\n", render::technique_name(t));
         continue;
       }
       bool warm = false;
-      for (int size : has_map(t) ? sizes : std::vector<int>{0}) {
-        viewer::FrameSettings fs;
-        fs.technique = t, fs.output = viewer::Output::Mask, fs.shadow_map_size = size ? size : 1024;
+      for (int size : render::technique_has_map(t) ? sizes : std::vector<int>{0}) {
+        render::FrameSettings fs;
+        fs.technique = t, fs.output = render::Output::Mask, fs.shadow_map_size = size ? size : 1024;
         geom::PngImage mask;
-        std::vector<viewer::PassTime> times;
+        std::vector<render::PassTime> times;
         // Fewer frames where one is slow (4096 maps, the heavy scene), never fewer sizes.
         const int n = (size >= 4096 || b.scene.triangle_count() > 100000) ? std::min(frames, 1) : frames;
         std::vector<double> ms;
         for (int f = warm ? 0 : -1; f < n; ++f) {
           times.clear();
-          if (!viewer::render(*state, view, b.light, fs, mask, times, error)) {
-            std::fprintf(stderr, "Error: scene %s, %s: %s\n", name.c_str(), viewer::technique_name(t), error.c_str());
-            return 1;
+          if (!render::render(*state, view, b.light, fs, mask, times, error)) {
+            cli::error("scene %s, %s: %s", name.c_str(), render::technique_name(t), error.c_str());
+            return cli::kExitFailure;
           }
           if (f < 0) continue;
           double sum = 0;
-          for (const viewer::PassTime& p : times)
+          for (const render::PassTime& p : times)
             if (is_shadow_pass(p.pass)) sum += p.ms;
           ms.push_back(sum);
         }
         warm = true;
         std::sort(ms.begin(), ms.end());
         Row r;
-        r.scene = name, r.technique = viewer::technique_name(t), r.size = size, r.time_kind = kind;
+        r.scene = name, r.technique = render::technique_name(t), r.size = size, r.time_kind = kind;
         r.time_ms = ms[ms.size() / 2], r.frames = n, r.triangles = b.scene.triangle_count();
         score(mask, ref, band, r);
         rows.push_back(r);
@@ -546,7 +525,7 @@ int main(int argc, char** argv) {
                     {"memory_vs_meshopt", mem}});
     }
     std::vector<std::string> tech_names;
-    for (viewer::Technique t : techniques) tech_names.push_back(viewer::technique_name(t));
+    for (render::Technique t : techniques) tech_names.push_back(render::technique_name(t));
     nlohmann::json j = {{"renderer", renderer},   {"timing", kind_text},
                         {"time_kind", kind},      {"image", {{"width", width}, {"height", height}}},
                         {"quick", quick},         {"shadow_map_sizes", sizes},
@@ -565,8 +544,8 @@ int main(int argc, char** argv) {
                     write_text(out_dir + "/plot.svg", plot_svg(rows, scenes_done, tech_names, kind)) &&
                     write_text(out_dir + "/summary.md", md.str());
     if (!ok) {
-      std::fprintf(stderr, "Error: %s: cannot write the results (does the folder exist?)\n", out_dir.c_str());
-      return 1;
+      cli::error("%s: cannot write the results (does the folder exist?)", out_dir.c_str());
+      return cli::kExitFailure;
     }
     std::printf("\nwrote %s/results.csv, results.json, bake.csv, plot.svg, summary.md\n", out_dir.c_str());
   }

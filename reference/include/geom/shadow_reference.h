@@ -1,0 +1,53 @@
+// geom/shadow_reference.h (library geom::reference, reference/): the exact
+// shadow mask of a scene, by ray casting. Links Embree; geom::geom does not.
+//
+// The reference every shadow technique is measured against (the viewer's GL
+// tests, geombench): for each pixel a ray from the eye through the pixel centre
+// finds the visible surface point P; a second ray from P to the light decides
+// whether P is lit. Rays are cast with Embree (robust mode) in single precision.
+//
+// Conventions, the same as `geomview --output mask`:
+//  - camera: geom/scene.h's Camera: right-handed look-at (eye, target, up),
+//    perspective with vertical field of view `fovy_deg`, aspect width / height,
+//    near and far planes as view-space depths; pixel (x, y), top row first, is
+//    sampled at its centre.
+//  - light: geom/scene.h's Light (glTF's convention: `direction` is where the
+//    light travels). A spot light lights only the points within `outer_cone`
+//    of its axis; its range and inner cone are ignored (a shadow test, not
+//    shading).
+//  - mask value per pixel: 255 lit, 0 in shadow, 128 where the ray meets no
+//    geometry within [near, far]. Surfaces are two-sided: the side the camera
+//    sees is lit only when the light is on that side of the triangle's plane
+//    (a surface facing away from the light counts as shadowed).
+//  - `uncertain`: 1 for pixels within one pixel (8-neighbourhood) of a pixel of
+//    another mask value (shadow, silhouette and terminator boundaries), and for
+//    pixels whose surface grazes the light (|cos| < 1e-4), where a one-pixel or
+//    rounding difference between a rasterizer and the ray caster is legitimate.
+//  - the segment to a point light stops short of the light by 1e-4 of its
+//    length: a light touching the geometry (at a vertex, on a face) is not
+//    blocked by the surface it lies on.
+// Triangles are given as indices into a position span. Errors (an index out of
+// range, a non-finite coordinate, an absurd image size, Embree failing) are
+// returned in `error`, never thrown.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geom/scene.h"
+#include "geom/span.h"
+
+namespace geom {
+
+struct ShadowReference {
+  bool ok = false;
+  std::string error;
+  int width = 0, height = 0;
+  std::vector<uint8_t> mask;       // width * height, top row first: 255 / 0 / 128
+  std::vector<uint8_t> uncertain;  // width * height: 1 near a true boundary, else 0
+};
+
+ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices, size_t index_count,
+                                 const Camera& camera, const Light& light);
+
+}  // namespace geom
