@@ -39,7 +39,10 @@
 #include "geom/bake.h"
 #include "geombake/args.h"
 #include "geombake/command.h"
+#include "geombake/fault.h"
 #include "geombake/inputs.h"
+#include "geombake/names.h"
+#include "uri.h"
 
 namespace geombake {
 namespace {
@@ -97,7 +100,8 @@ std::string dependency_of(const std::string& input) {
 }
 
 // Every file an input was made from: the input (or its archive) and, for a
-// .gltf, the external buffers its JSON names (percent-decoded, relative to it;
+// .gltf, the external buffers its JSON names (percent-decoded as the importer
+// decodes them (uri.h), relative to it;
 // images are never read, so they are no dependency).
 std::vector<std::string> dependencies_of(const std::string& input) {
   std::vector<std::string> deps = {dependency_of(input)};
@@ -114,36 +118,10 @@ std::vector<std::string> dependencies_of(const std::string& input) {
     if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
     const std::string uri = b["uri"].get<std::string>();
     if (uri.rfind("data:", 0) == 0) continue;
-    std::string path;
-    for (size_t i = 0; i < uri.size(); ++i) {
-      if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-          std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-        path += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-        i += 2;
-      } else {
-        path += uri[i];
-      }
-    }
-    path = dir + path;
+    const std::string path = dir + geom::detail::percent_decode(uri);  // as the importer reads it
     if (std::find(deps.begin(), deps.end(), path) == deps.end()) deps.push_back(path);
   }
   return deps;
-}
-
-// "1048576", "64K", "300M", "2G" -> bytes; false on anything else.
-bool parse_bytes(const std::string& text, uint64_t& bytes) {
-  size_t digits = 0;
-  while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
-  if (digits == 0 || digits > 15 || text.size() > digits + 1) return false;
-  uint64_t v = std::stoull(text.substr(0, digits));
-  if (digits < text.size()) {
-    const char unit = char(std::toupper(static_cast<unsigned char>(text[digits])));
-    const int shift = unit == 'K' ? 10 : unit == 'M' ? 20 : unit == 'G' ? 30 : -1;
-    if (shift < 0 || v > (UINT64_MAX >> shift)) return false;
-    v <<= shift;
-  }
-  bytes = v;
-  return true;
 }
 
 // What baking one triangle costs at the peak, beyond the imported scene: the
@@ -184,16 +162,6 @@ std::string geometry_warning(const std::string& input, const geom::TopologyStats
   return w.empty() ? w : input + ": " + w + " (baked; counted in the report)";
 }
 
-std::string make_escape(const std::string& path) {
-  std::string o;
-  for (char c : path) {
-    if (c == ' ' || c == '#' || c == '\\') o += '\\';
-    if (c == '$') o += '$';
-    o += c;
-  }
-  return o;
-}
-
 // What the report says of a written section; the bytes themselves are dropped
 // as soon as the file is written, so a run over many inputs holds one bake per thread.
 struct SectionInfo {
@@ -221,6 +189,13 @@ nlohmann::ordered_json section_json(const SectionInfo& s) {
           {"crc32c", s.crc}};
 }
 
+// A JSON text made by libgeom, compact as nlohmann writes it; as it is when
+// nlohmann cannot read it (a name escaped as \udcXX, names.h).
+std::string compact_json(const std::string& text) {
+  const nlohmann::ordered_json v = nlohmann::ordered_json::parse(text, nullptr, false);
+  return v.is_discarded() ? text : v.dump();
+}
+
 struct Job {
   std::string input, output, error;  // error: why no output was planned, or the bake's error
   geom::BakeResult result;           // without its sections' bytes once written
@@ -231,18 +206,13 @@ struct Job {
   std::atomic<int> state{0};
   std::atomic<int64_t> started_ns{0};  // steady clock, when state became kRunning
   size_t worker = 0;                   // the worker thread that runs it
+  Budget budget;                       // its memory (--max-memory); cancelled when it times out
 };
 enum { kPending, kRunning, kWriting, kFinished, kTimedOut };
 
 int64_t now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
-}
-
-std::string seconds_text(double s) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", s);
-  return b;
 }
 
 // One input, start to end: import (within the limits), the memory estimate,
@@ -253,8 +223,8 @@ struct Outcome {
   std::string error;
   std::vector<SectionInfo> sections;
 };
-Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportOptions& import_options,
-                 uint64_t max_memory, double timeout) {
+Outcome bake_unguarded(Job& job, const geom::BakeOptions& options, const geom::ImportOptions& import_options,
+                       uint64_t max_memory, double timeout) {
   Outcome o;
   geom::ImportResult imported = geom::import_file(job.input, import_options);
   if (!imported.ok) {
@@ -288,10 +258,25 @@ Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportO
   return o;
 }
 
+// bake_unguarded() as a fault domain (fault.h): whatever it throws, bad_alloc
+// and its --max-memory budget included, is this input's error.
+Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportOptions& import_options,
+                 uint64_t max_memory, double timeout) {
+  Outcome o;
+  job.budget.limit = max_memory;
+  std::string error = guarded(job.input, job.budget, [&] {
+    o = bake_unguarded(job, options, import_options, max_memory, timeout);
+    return std::string();
+  });
+  if (!error.empty()) o = Outcome(), o.error = error;
+  return o;
+}
+
 int run_bake(const std::vector<std::string>& argv) {
   Args args(argv,
             {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
-             "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights", "--one-sided-closed"},
+             "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights", "--one-sided-closed",
+             "--allow-outside-uris"},
             {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
              "--md3-frame", "--max-triangles", "--max-memory", "--timeout", "--list"});
   if (args.has("--help") || args.has("-h")) {
@@ -322,6 +307,8 @@ int run_bake(const std::vector<std::string>& argv) {
     }
     import_options.max_bytes = max_memory;
   }
+  import_options.allow_outside_uris = args.has("--allow-outside-uris");
+  if (max_memory || timeout > 0) enable_budgets();  // real accounting; cancellation of abandoned work
   options.positions = !args.has("--no-positions");
   options.indices = !args.has("--no-indices");
   options.weld_remap = !args.has("--no-remap");
@@ -357,6 +344,10 @@ int run_bake(const std::vector<std::string>& argv) {
   }
   namespace fs = std::filesystem;
   const std::string out = args.get("-o");
+  if (out.empty()) {
+    std::fprintf(stderr, "Error: -o: the output path is empty\n");
+    return 2;
+  }
   std::error_code ec;
   const bool out_is_dir = fs::is_directory(out, ec) || inputs.size() > 1 || (!out.empty() && out.back() == '/');
   if (out_is_dir && !fs::is_directory(out, ec)) {
@@ -368,6 +359,17 @@ int run_bake(const std::vector<std::string>& argv) {
     }
   }
 
+  if (!out_is_dir) {
+    const std::string problem = output_problem(out);
+    if (!problem.empty()) {
+      std::fprintf(stderr, "Error: -o %s: %s\n", out.c_str(), problem.c_str());
+      return 2;
+    }
+  }
+  // Temporary files a killed run left in the output folder (geom/atomic_file.h).
+  const size_t slash = out.find_last_of('/');
+  geom::remove_stale_temp_files(out_is_dir ? out : slash == std::string::npos ? "." : out.substr(0, slash + 1));
+
   std::vector<Job> jobs(inputs.size());
   std::map<std::string, size_t> claimed;  // output -> first input writing it
   for (size_t i = 0; i < inputs.size(); ++i) {
@@ -376,6 +378,8 @@ int run_bake(const std::vector<std::string>& argv) {
     job.output = out_is_dir ? (fs::path(out) / (stem_of(job.input) + kExtension)).string() : out;
     auto [it, fresh] = claimed.emplace(job.output, i);
     if (!fresh) job.error = job.input + ": its output " + job.output + " is also the output of " + inputs[it->second];
+    if (job.error.empty() && same_file(dependency_of(job.input), job.output))
+      job.error = job.input + ": is its own output (-o " + job.output + "): not baked";
   }
 
   // Bake in parallel; each job writes only its own slot. The main thread is
@@ -433,6 +437,7 @@ int run_bake(const std::vector<std::string>& argv) {
             !job.state.compare_exchange_strong(expected, kTimedOut))
           continue;
         job.error = job.input + ": timed out after " + seconds_text(timeout) + " s (--timeout)";
+        job.budget.cancelled = true;  // its next allocation throws: the work unwinds, its memory is freed
         ++finished, ++timed_out;
         show_progress(job);
         stuck[job.worker] = true;
@@ -444,15 +449,21 @@ int run_bake(const std::vector<std::string>& argv) {
 
   // Report in input order.
   int failed = 0;
-  std::string depfile;
+  std::string depfile, depfile_error;
   for (const Job& job : jobs) {
     if (!job.done) {
       std::fprintf(stderr, "Error: %s\n", job.error.c_str());
       ++failed;
     } else {
-      depfile += make_escape(job.output) + ":";
-      for (const std::string& d : dependencies_of(job.input)) depfile += " " + make_escape(d);
-      depfile += "\n";
+      std::string rule, escaped;
+      bool ok = make_escape(job.output, escaped);
+      rule = escaped + ":";
+      for (const std::string& d : dependencies_of(job.input)) ok = make_escape(d, escaped) && ok, rule += " " + escaped;
+      if (ok)
+        depfile += rule + "\n";
+      else if (args.has("--depfile"))
+        depfile_error += "Error: " + job.input + ": a newline in its name or its output's cannot be written in a "
+                         "depfile (Make has no escape for it)\n";
       if (!args.has("--json")) {
         for (const std::string& w : job.result.report.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
         const std::string g = geometry_warning(job.input, job.result.report.stats);
@@ -460,21 +471,23 @@ int run_bake(const std::vector<std::string>& argv) {
       }
     }
     if (args.has("--json")) {
-      nlohmann::ordered_json j = {{"input", job.input}, {"output", job.output}, {"ok", job.done}};
+      // Built by hand around the names: json_quote() keeps any bytes (names.h).
+      std::string line = "{\"input\":" + json_quote(job.input) + ",\"output\":" + json_quote(job.output) +
+                         ",\"ok\":" + (job.done ? "true" : "false");
       if (!job.done) {
-        j["error"] = job.error;
+        line += ",\"error\":" + json_quote(job.error);
       } else {
         uint64_t total = 0;
-        j["sections"] = nlohmann::ordered_json::array();
+        nlohmann::ordered_json sections = nlohmann::ordered_json::array();
         for (const auto& s : job.sections) {
-          j["sections"].push_back(section_json(s));
+          sections.push_back(section_json(s));
           total += s.bytes;
         }
-        j["section_bytes"] = total;
-        j["topology"] = nlohmann::ordered_json::parse(geom::report_json(job.result.report));
-        if (!job.result.silhouette.empty()) j["silhouette"] = nlohmann::ordered_json::parse(job.result.silhouette);
+        line += ",\"sections\":" + sections.dump() + ",\"section_bytes\":" + std::to_string(total);
+        line += ",\"topology\":" + compact_json(geom::report_json(job.result.report));
+        if (!job.result.silhouette.empty()) line += ",\"silhouette\":" + compact_json(job.result.silhouette);
       }
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s}\n", line.c_str());
     } else if (args.has("-v") && job.done) {
       uint64_t total = 0;
       for (const auto& s : job.sections) total += s.bytes;
@@ -502,6 +515,7 @@ int run_bake(const std::vector<std::string>& argv) {
     }
   }
   int status = failed ? 1 : 0;
+  if (!depfile_error.empty()) std::fputs(depfile_error.c_str(), stderr), status = 1;
   if (args.has("--depfile")) {
     std::string error;
     if (!geom::write_file_atomically(args.get("--depfile"), depfile, error)) {

@@ -32,13 +32,11 @@ bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string
     if ((l.size() > 4 && (l.compare(l.size() - 4, 4, ".pk3") == 0 || l.compare(l.size() - 4, 4, ".zip") == 0))) {
       std::vector<std::string> names;
       std::string error;
-      if (!geom::detail::list_archive_members(a, ".bsp", names, error)) {
-        std::fprintf(stderr, "Error: %s: %s\n", a.c_str(), error.c_str());
-        return false;
-      }
-      if (names.empty()) {
-        std::fprintf(stderr, "Error: %s: no .bsp map inside the archive\n", a.c_str());
-        return false;
+      // An archive that cannot be listed, or holds no map, stays one input: the
+      // import says why (its `Error:`), and the other inputs go on.
+      if (!geom::detail::list_archive_members(a, ".bsp", names, error) || names.empty()) {
+        inputs.push_back(a);
+        continue;
       }
       for (const std::string& n : names) inputs.push_back(a + ":" + n);
       continue;
@@ -47,7 +45,7 @@ bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string
     if (fs::is_directory(a, ec)) {
       std::vector<std::string> files;
       for (const auto& entry : fs::directory_iterator(a, ec))
-        if (entry.is_regular_file(ec) && is_mesh_file(entry.path().filename().string()))
+        if (!entry.is_directory(ec) && is_mesh_file(entry.path().filename().string()))  // FIFOs, broken links: errors
           files.push_back(entry.path().string());
       std::sort(files.begin(), files.end());
       inputs.insert(inputs.end(), files.begin(), files.end());

@@ -3,9 +3,11 @@
 // subcommands; each prints `Error: FILE: what is wrong` and exits non-zero on bad input.
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <string>
 #include <vector>
 
+#include "geom/atomic_file.h"
 #include "geombake/command.h"
 
 namespace geombake {
@@ -29,6 +31,7 @@ static void usage(FILE* f) {
 }
 
 int main(int argc, char** argv) {
+  geom::remove_temp_files_on_signal();  // Ctrl-C or SIGTERM mid-write leaves no temporary file
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
@@ -38,6 +41,9 @@ int main(int argc, char** argv) {
       std::vector<std::string> args(argv + 2, argv + argc);
       try {
         return c.run(args);
+      } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "Error: out of memory\n");
+        return 1;
       } catch (const std::exception& e) {
         std::fprintf(stderr, "Error: %s\n", e.what());
         return 1;
