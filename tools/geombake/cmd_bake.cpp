@@ -132,6 +132,10 @@ std::vector<std::string> dependencies_of(const std::string& input) {
 // oa_ctf2 (19,193) 370 B; rounded up with a margin. The process's own ~12 MB
 // is not counted.
 constexpr uint64_t kBakeBytesPerTriangle = 1024;
+// And per triangle per exact light volume (--light, KHR_lights_punctual): at
+// most a side quad per edge and two caps per triangle, 16-byte vertices, as a
+// lower bound (the budget of fault.h counts the real allocations).
+constexpr uint64_t kBakeBytesPerTrianglePerLight = 256;
 
 // Reads a list file's inputs; false (after an `Error:` line) if it cannot be read.
 bool read_list(const std::string& path, std::vector<std::string>& inputs) {
@@ -232,10 +236,15 @@ Outcome bake_unguarded(Job& job, const geom::BakeOptions& options, const geom::I
     return o;
   }
   if (max_memory) {
-    const uint64_t need = uint64_t(imported.scene.triangle_count()) * kBakeBytesPerTriangle;
+    // The estimate refuses at once what cannot fit; the budget (fault.h) bounds the rest.
+    const uint64_t tris = imported.scene.triangle_count();
+    const uint64_t lights = options.lights.size() + (options.scene_lights ? imported.scene.lights.size() : 0);
+    const uint64_t need = tris * kBakeBytesPerTriangle + lights * tris * kBakeBytesPerTrianglePerLight;
     if (need > max_memory) {
-      o.error = job.input + ": baking " + std::to_string(imported.scene.triangle_count()) + " triangles needs about " +
-                std::to_string(need) + " bytes, over the limit of " + std::to_string(max_memory) + " (--max-memory)";
+      o.error = job.input + ": baking " + std::to_string(tris) + " triangles" +
+                (lights ? " with " + std::to_string(lights) + " exact light volumes" : std::string()) +
+                " needs about " + std::to_string(need) + " bytes, over the limit of " + std::to_string(max_memory) +
+                " (--max-memory)";
       return o;
     }
   }
