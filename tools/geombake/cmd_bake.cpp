@@ -275,7 +275,7 @@ Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportO
   job.budget.limit = max_memory;
   std::string error = guarded(job.input, job.budget, [&] {
     o = bake_unguarded(job, options, import_options, max_memory, timeout);
-    return std::string();
+    return o.error;
   });
   if (!error.empty()) o = Outcome(), o.error = error;
   return o;

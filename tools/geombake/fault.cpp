@@ -76,13 +76,18 @@ std::string guarded(const std::string& input, Budget& budget, const std::functio
     // The scope has ended: the message itself is not charged.
     if (budget.cancelled) return input + ": abandoned (--timeout)";
     if (budget.exceeded)
-      return input + ": needs more than " + std::to_string(budget.limit) + " bytes of memory (--max-memory)";
+      return input + ": needs more memory than allowed, over the limit of " + std::to_string(budget.limit) +
+             " (--max-memory)";
     return input + ": out of memory";
   } catch (const std::exception& e) {
     return input + ": " + e.what();
   } catch (...) {
     return input + ": unknown exception";
   }
+  // A library that caught the bad_alloc itself (the importers do) said "out of memory": say which limit.
+  if (!error.empty() && budget.exceeded)
+    return input + ": needs more memory than allowed, over the limit of " + std::to_string(budget.limit) +
+           " (--max-memory)";
   return error;
 }
 

@@ -47,8 +47,8 @@ class BudgetScope {
 
 // Runs `work` for `input` as a fault domain: returns "" if it returned "", else
 // the one-line cause ("FILE: cause"): what `work` returned, or what it threw
-// (bad_alloc becomes "out of memory", or "needs more than N bytes
-// (--max-memory)" when the budget refused it).
+// (bad_alloc becomes "out of memory", or "needs more memory than allowed,
+// over the limit of N (--max-memory)" when the budget refused it).
 std::string guarded(const std::string& input, Budget& budget, const std::function<std::string()>& work);
 
 // Runs `work` (as guarded() does) on a thread of its own and waits for it at
