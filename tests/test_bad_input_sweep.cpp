@@ -48,7 +48,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kData = GEOM_SHARED_DATA;
+const std::string kData = GEOM_TEST_DATA;
 const std::string kAssimp = "/usr/share/assimp/models";
 const std::string kOpenscad = "/usr/share/openscad";
 const double kCpuLimit = 1.0 * cli::kSanitizerFactor;

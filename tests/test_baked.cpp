@@ -716,7 +716,7 @@ TEST(Bake, Deterministic) {
 namespace {
 
 const std::string kBoxObj = "/usr/share/assimp/models/OBJ/box.obj";
-const std::string kDracoBox = std::string(GEOM_SHARED_DATA) + "/draco/Box/glTF/Box.gltf";
+const std::string kDracoBox = std::string(GEOM_TEST_DATA) + "/draco/Box/glTF/Box.gltf";
 
 std::vector<unsigned char> read_bytes(const std::string& path) {
   std::vector<unsigned char> bytes;

@@ -28,7 +28,7 @@
 // --quick (CI): 160x120 images, sizes 256 and 1024, scenes default, pipes,
 // grazing, one frame, bake throughput on 10k and 50k triangles.
 // cube needs a point or spot light: it has no rows for directional-light scenes.
-// A scene whose data is missing (the OpenArena map, the shared bunny) is skipped
+// A scene whose data is missing (the OpenArena map, the vendored bunny) is skipped
 // with a warning and listed under "skipped" in the JSON and the summary.
 // Exit: 0 on success, 1 when the GL context or a render fails, 2 on bad usage.
 #include <algorithm>
