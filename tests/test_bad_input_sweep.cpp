@@ -413,7 +413,7 @@ TEST(BadInputSweep, TruncationsInBatch) {
     const std::set<std::string> out_set(outputs.begin(), outputs.end());
     size_t refused = 0;
     for (const std::string& in : inputs) {
-      const std::string out_name = fs::path(in).stem().string() + ".gbake";
+      const std::string out_name = fs::path(in).filename().string() + ".gbake";
       const bool error_line = r.err.find("Error: " + in + ": ") != std::string::npos;
       const bool baked = out_set.count(out_name) > 0;
       EXPECT_NE(error_line, baked) << in;  // exactly one of the two

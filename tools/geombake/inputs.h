@@ -12,7 +12,7 @@
 namespace geombake {
 
 // Expands each argument: ARCHIVE.pk3 (no ":member") becomes every .bsp inside
-// it, a directory every mesh file inside it (sorted, not recursive), anything
+// it, a directory every mesh file under it (recursive, sorted), anything
 // else stays as it is. Prints `Error:` and returns false for an unreadable archive.
 bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string>& inputs);
 
