@@ -15,20 +15,7 @@ namespace geombake {
 Written write_if_changed(const std::string& path, const std::vector<geom::BakedSection>& sections, bool force,
                          bool make_parents, std::string& error) {
   namespace fs = std::filesystem;
-  std::vector<unsigned char> bytes;
-  try {
-    if (!geom::serialize_baked(sections, bytes, error)) return Written::Failed;
-  } catch (const std::bad_alloc&) {
-    error = "out of memory laying out the baked file";
-    return Written::Failed;
-  }
   std::error_code ec;
-  if (!force && fs::is_regular_file(path, ec) && fs::file_size(path, ec) == bytes.size() && !ec) {
-    std::ifstream f(path, std::ios::binary);
-    std::vector<unsigned char> old(bytes.size());
-    if (f.read(reinterpret_cast<char*>(old.data()), std::streamsize(old.size())) && old == bytes)
-      return Written::Unchanged;
-  }
   if (make_parents) {
     const fs::path parent = fs::path(path).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec)) {
@@ -38,6 +25,23 @@ Written write_if_changed(const std::string& path, const std::vector<geom::BakedS
         return Written::Failed;
       }
     }
+  }
+  // No output there yet (or --force): the writer's own path.
+  if (force || !fs::is_regular_file(path, ec))
+    return geom::write_baked(path, sections, error) ? Written::New : Written::Failed;
+  // An output there: lay the new one out and compare before writing.
+  std::vector<unsigned char> bytes;
+  try {
+    if (!geom::serialize_baked(sections, bytes, error)) return Written::Failed;
+  } catch (const std::bad_alloc&) {
+    error = "out of memory laying out the baked file";
+    return Written::Failed;
+  }
+  if (fs::file_size(path, ec) == bytes.size() && !ec) {
+    std::ifstream f(path, std::ios::binary);
+    std::vector<unsigned char> old(bytes.size());
+    if (f.read(reinterpret_cast<char*>(old.data()), std::streamsize(old.size())) && old == bytes)
+      return Written::Unchanged;
   }
   return geom::write_file_atomically(path, bytes.data(), bytes.size(), error) ? Written::New : Written::Failed;
 }

@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -390,6 +391,15 @@ int main(int argc, char** argv) {
   if (const char* e = std::getenv("GEOMVIEW_SHADERS")) shader_dir = e;
   if (args.has("--shaders")) shader_dir = args.get("--shaders");
   const std::string out_dir = args.get("-o");
+  if (!out_dir.empty()) {  // created before the run: minutes of work must not end unable to write
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (!std::filesystem::is_directory(out_dir)) {
+      std::fprintf(stderr, "Error: %s: cannot create the output folder%s%s\n", out_dir.c_str(), ec ? ": " : "",
+                   ec ? ec.message().c_str() : "");
+      return 1;
+    }
+  }
 
   // Bake throughput first: it forks, which is best done before a GL context exists.
   std::vector<geombench::BakeRow> bake;
@@ -565,7 +575,7 @@ int main(int argc, char** argv) {
                     write_text(out_dir + "/plot.svg", plot_svg(rows, scenes_done, tech_names, kind)) &&
                     write_text(out_dir + "/summary.md", md.str());
     if (!ok) {
-      std::fprintf(stderr, "Error: %s: cannot write the results (does the folder exist?)\n", out_dir.c_str());
+      std::fprintf(stderr, "Error: %s: cannot write the results\n", out_dir.c_str());
       return 1;
     }
     std::printf("\nwrote %s/results.csv, results.json, bake.csv, plot.svg, summary.md\n", out_dir.c_str());
