@@ -716,7 +716,7 @@ TEST(Bake, Deterministic) {
 namespace {
 
 const std::string kBoxObj = "/usr/share/assimp/models/OBJ/box.obj";
-const std::string kDracoBox = std::string(GEOM_SHARED_DATA) + "/draco/Box/glTF/Box.gltf";
+const std::string kDracoBox = std::string(GEOM_TEST_DATA) + "/draco/Box/glTF/Box.gltf";
 
 std::vector<unsigned char> read_bytes(const std::string& path) {
   std::vector<unsigned char> bytes;
@@ -837,8 +837,8 @@ TEST(GeombakeCli, SeveralInputsOneFailing) {
   EXPECT_NE(r.err.find("Error: " + dir + "/b.obj: "), std::string::npos) << r.err;
   auto names = list_dir(dir + "/out");
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"a.gbake", "c.gbake"}));
-  CliRun ok = geombake(dir, "inspect '" + dir + "/out/a.gbake' '" + dir + "/out/c.gbake'");
+  EXPECT_EQ(names, (std::vector<std::string>{"a.obj.gbake", "c.obj.gbake"}));
+  CliRun ok = geombake(dir, "inspect '" + dir + "/out/a.obj.gbake' '" + dir + "/out/c.obj.gbake'");
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("all checksums verified"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("volume_sides"), std::string::npos) << ok.out;
@@ -847,11 +847,11 @@ TEST(GeombakeCli, SeveralInputsOneFailing) {
   write_text(dir + "/sub/a.obj", tetra_obj(1));
   CliRun dup = geombake(dir, "bake '" + dir + "/a.obj' '" + dir + "/sub/a.obj' -o '" + dir + "/dup'");
   EXPECT_EQ(dup.status, 1);
-  EXPECT_NE(dup.err.find("Error: " + dir + "/sub/a.obj: its output " + dir + "/dup/a.gbake is also the output of " +
+  EXPECT_NE(dup.err.find("Error: " + dir + "/sub/a.obj: its output " + dir + "/dup/a.obj.gbake is also the output of " +
                          dir + "/a.obj"),
             std::string::npos)
       << dup.err;
-  EXPECT_EQ(list_dir(dir + "/dup"), std::vector<std::string>{"a.gbake"});
+  EXPECT_EQ(list_dir(dir + "/dup"), std::vector<std::string>{"a.obj.gbake"});
   // Bad arguments: exit 2.
   EXPECT_EQ(geombake(dir, "bake '" + dir + "/a.obj'").status, 2);  // no -o
   EXPECT_EQ(geombake(dir, "bake --frobnicate '" + dir + "/a.obj' -o x").status, 2);
@@ -937,17 +937,17 @@ TEST(GeombakeCli, Quake3MapFromArchive) {
   ASSERT_EQ(r.status, 0) << r.err;
   CliRun again = geombake(dir, "bake --light 0,0,1,0 '" + map + "' '" + kBoxObj + "' -o '" + dir + "/again' -j 1");
   ASSERT_EQ(again.status, 0) << again.err;
-  EXPECT_TRUE(read_bytes(dir + "/out/oa_bases3cl.gbake") == read_bytes(dir + "/again/oa_bases3cl.gbake"));
-  EXPECT_TRUE(read_bytes(dir + "/out/box.gbake") == read_bytes(dir + "/again/box.gbake"));
+  EXPECT_TRUE(read_bytes(dir + "/out/oa_bases3cl.bsp.gbake") == read_bytes(dir + "/again/oa_bases3cl.bsp.gbake"));
+  EXPECT_TRUE(read_bytes(dir + "/out/box.obj.gbake") == read_bytes(dir + "/again/box.obj.gbake"));
   geom::ImportResult imported = geom::import_file(map);
   ASSERT_TRUE(imported.ok) << imported.error;
   geom::BakeOptions o;
   o.lights = {{0, 0, 1, 0}};
   check_baked(imported.scene, o, map);
-  geom::BakeResult baked = geom::bake_scene(imported.scene, map, o);
+  geom::BakeResult baked = geom::bake_scene(imported.scene, "pak1-maps.pk3:maps/oa_bases3cl.bsp", o);  // the name stored
   ASSERT_TRUE(baked.ok) << baked.error;
   geom::baked::File f;
-  ASSERT_TRUE(f.load(dir + "/out/oa_bases3cl.gbake")) << f.error();
+  ASSERT_TRUE(f.load(dir + "/out/oa_bases3cl.bsp.gbake")) << f.error();
   expect_same(baked.sections, f.reader());
   EXPECT_FALSE(baked.report.stats.closed);
 }

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "archive.h"
+#include "geombake/tree.h"
 
 namespace geombake {
 namespace {
@@ -12,15 +13,6 @@ namespace {
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s;
-}
-
-bool is_mesh_file(const std::string& name) {
-  const std::string n = lower(name);
-  for (const char* ext : {".gltf", ".glb", ".obj", ".ply", ".off", ".stl", ".bsp", ".md3"}) {
-    const std::string e = ext;
-    if (n.size() >= e.size() && n.compare(n.size() - e.size(), e.size(), e) == 0) return true;
-  }
-  return false;
 }
 
 }  // namespace
@@ -42,13 +34,11 @@ bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string
       continue;
     }
     std::error_code ec;
-    if (fs::is_directory(a, ec)) {
-      std::vector<std::string> files;
-      for (const auto& entry : fs::directory_iterator(a, ec))
-        if (!entry.is_directory(ec) && is_mesh_file(entry.path().filename().string()))  // FIFOs, broken links: errors
-          files.push_back(entry.path().string());
-      std::sort(files.begin(), files.end());
-      inputs.insert(inputs.end(), files.begin(), files.end());
+    if (fs::is_directory(a, ec)) {  // recursive, what is skipped said (geombake/tree.h)
+      std::vector<std::string> files, warnings;
+      walk_directory(a, files, warnings);
+      for (const std::string& w : warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+      for (const std::string& f : files) inputs.push_back((fs::path(a) / f).string());
       continue;
     }
     inputs.push_back(a);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geom/atomic_file.h"
+#include "geom/version.h"
 #include "geombake/command.h"
 
 namespace geombake {
@@ -25,7 +26,8 @@ const std::vector<Command>& commands() { return registry(); }
 }  // namespace geombake
 
 static void usage(FILE* f) {
-  std::fprintf(f, "usage: geombake COMMAND [options] FILE...\n\ncommands:\n");
+  std::fprintf(f, "geombake %s\nusage: geombake COMMAND [options] FILE...\n       geombake --version\n\ncommands:\n",
+               GEOM_VERSION);
   for (const auto& c : geombake::commands()) std::fprintf(f, "  %-10s %s\n", c.name, c.summary);
   std::fprintf(f, "\n`geombake COMMAND --help` for a command's options.\n");
 }
@@ -35,6 +37,10 @@ int main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;
+  }
+  if (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "-V")) {
+    std::printf("geombake %s\n", GEOM_VERSION);
+    return 0;
   }
   for (const auto& c : geombake::commands()) {
     if (c.name == std::string(argv[1])) {

@@ -2,6 +2,7 @@
 // for any name, Makefile depfile escaping, and the checks of inputs against
 // outputs.
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace geombake {
@@ -23,6 +24,15 @@ bool make_escape(const std::string& path, std::string& out);
 // Why `output` cannot be written ("" if it can): an empty path, an existing
 // directory, device, FIFO or socket, or a folder that does not exist.
 std::string output_problem(const std::string& output);
+
+// A JSON text made elsewhere (libgeom's reports), to be held in an
+// ordered_json: parsed when nlohmann can read it, else (a name escaped as
+// \udcXX, which nlohmann refuses) kept as it is, to be written as it is by dump_json.
+nlohmann::ordered_json json_text(const std::string& text);
+
+// `j` as JSON text, as j.dump(indent) writes it, but valid whatever bytes its
+// strings hold (json_quote) and with json_text() values written as they are.
+std::string dump_json(const nlohmann::ordered_json& j, int indent = -1);
 
 // True when `a` and `b` name the same existing file (same device and inode).
 bool same_file(const std::string& a, const std::string& b);
