@@ -118,6 +118,11 @@ TEST(BakeTree, DirectoryWalksRecursivelyAndOutputsMirrorIt) {
   // A file named alone stores its base name, a file found in a tree its path there.
   EXPECT_NE(cli::slurp(work / "out" / "b" / "deep" / "pig.off.gbake").find("b/deep/pig.off"), std::string::npos);
   EXPECT_NE(cli::slurp(alone).find("\"pig.off\""), std::string::npos);
+  // geombake info walks a directory the same way.
+  cli::Run info = cli::run({"info", "--json", in.string()}, work / "log3");
+  EXPECT_EQ(info.exit_code, 0) << cli::describe(info);
+  EXPECT_EQ(std::count(info.out.begin(), info.out.end(), '\n'), 4) << info.out;
+  EXPECT_NE(info.out.find((in / "b" / "deep" / "pig.off").string()), std::string::npos) << info.out;
 }
 
 TEST(BakeTree, OutputIsAFolderWheneverTheInputIsOne) {
