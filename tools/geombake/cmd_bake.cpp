@@ -205,9 +205,9 @@ struct SectionInfo {
   uint32_t crc;
 };
 
-SectionInfo info_of(const geom::BakedSection& s) {
-  return {s.name, s.type,  s.format,       s.stride,
-          s.item, s.count, s.bytes.size(), geom::baked::crc32c(s.bytes.data(), s.bytes.size())};
+// `crc`: the section's CRC-32C as the writer computed it (never a second time).
+SectionInfo info_of(const geom::BakedSection& s, uint32_t crc) {
+  return {s.name, s.type, s.format, s.stride, s.item, s.count, s.size(), crc};
 }
 
 nlohmann::ordered_json section_json(const SectionInfo& s) {
@@ -279,11 +279,13 @@ Outcome bake_one(Job& job, const geom::BakeOptions& options, const geom::ImportO
   if (timeout > 0 && double(now_ns() - job.started_ns.load()) * 1e-9 > timeout) return o;  // the caller times it out
   if (!job.state.compare_exchange_strong(expected, kWriting)) return o;                    // given up on: write nothing
   std::string error;
-  if (!geom::write_baked(job.output, o.result.sections, error)) {
+  std::vector<uint32_t> crcs;
+  if (!geom::write_baked(job.output, o.result.sections, error, &crcs)) {
     o.result.ok = false;
     o.error = job.input + ": cannot write " + job.output + ": " + error;
   }
-  for (const auto& sec : o.result.sections) o.sections.push_back(info_of(sec));
+  crcs.resize(o.result.sections.size(), 0);
+  for (size_t i = 0; i < o.result.sections.size(); ++i) o.sections.push_back(info_of(o.result.sections[i], crcs[i]));
   std::vector<geom::BakedSection>().swap(o.result.sections);
   return o;
 }
