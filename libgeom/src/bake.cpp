@@ -139,7 +139,7 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
     // The report, field by field as geom/report.h's analyze() fills it.
     r.report.file = name;
     r.report.stats = topo.stats;
-    r.report.halfedge = summarize_halfedges(welded, w.indices.data(), tc);
+    r.report.halfedge = summarize_halfedges(welded, w.indices.data(), tc, topo);
     r.report.lights = scene.lights.size();
     r.report.source_counts = scene.source_counts;
     r.report.warnings = scene.warnings;
@@ -197,11 +197,7 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
     }
     if (options.adjacency) {
       std::vector<uint32_t> adj(adjacency_index_count(tc));
-      if (!build_adjacency(adj.data(), w.indices.data(), tc, w.vertex_count())) {
-        r = BakeResult();
-        r.error = name + ": out of memory building the adjacency indices";
-        return r;
-      }
+      build_adjacency(adj.data(), w.indices.data(), tc, topo);
       js += "\"adjacency\":{\"indices\":" + json_uint(adj.size()) + "},";
       s.push_back(make_baked_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", std::move(adj)));
     }

@@ -74,9 +74,15 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     }
   }
 
-  // Group each bucket into edges.
+  // Group each bucket into edges. Duplicate faces on the way: a face with the
+  // same vertex set as an earlier one shares each of its edges with it, and
+  // has the same third vertex there; so within an edge's faces (in triangle
+  // order) a face whose first edge this is is a duplicate when an earlier face
+  // of the edge had its third vertex (`seen_at`: the last edge that saw a
+  // vertex as a third vertex). Linear however many faces share the edge.
   t.edges.reserve(half.size() / 2 + 16);
   t.edge_faces.reserve(half.size());
+  std::vector<uint32_t> seen_at(vn, Topology::kNone);
   for (size_t v0 = 0; v0 < vn; ++v0) {
     HalfEdge* b = half.data() + start[v0];
     HalfEdge* e = half.data() + start[v0 + 1];
@@ -93,6 +99,13 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       for (HalfEdge* h = run; h != end; ++h) {
         t.edge_faces.push_back(h->face << 1 | h->reversed);
         t.face_edges[3 * size_t(h->face) + h->k] = id;
+        if (edge.face_count < 2) continue;
+        const uint32_t third = indices[3 * size_t(h->face) + (h->k + 2) % 3];
+        if (h->k == 0 && seen_at[third] == id) {
+          t.face_flags[h->face] |= kFaceDuplicate;
+          ++s.duplicate_triangles;
+        }
+        seen_at[third] = id;
       }
       if (edge.face_count == 2)
         edge.kind = run[0].reversed != run[1].reversed ? EdgeKind::Manifold : EdgeKind::Inconsistent;
@@ -161,27 +174,6 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       e.shape = EdgeShape::Concave;
       e.dihedral_degrees = float(180.0 + theta);
       ++s.concave_edges;
-    }
-  }
-
-  // Duplicate faces: same vertex set as an earlier face sharing its first edge.
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (t.face_flags[f] & kFaceCollapsed) continue;
-    const uint32_t* v = indices + 3 * f;
-    uint32_t a[3] = {v[0], v[1], v[2]};
-    std::sort(a, a + 3);
-    const Edge& e = t.edges[t.face_edges[3 * f]];
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      uint32_t g = t.edge_faces[e.first + i] >> 1;
-      if (g >= f) break;
-      const uint32_t* w = indices + 3 * size_t(g);
-      uint32_t b[3] = {w[0], w[1], w[2]};
-      std::sort(b, b + 3);
-      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) {
-        t.face_flags[f] |= kFaceDuplicate;
-        ++s.duplicate_triangles;
-        break;
-      }
     }
   }
 
