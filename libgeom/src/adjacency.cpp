@@ -18,6 +18,8 @@
 #include <new>
 #include <vector>
 
+#include "work_count.h"
+
 namespace geom {
 namespace {
 
@@ -46,6 +48,7 @@ bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_cou
   for (uint32_t id = 0; id < topology.edges.size(); ++id) {
     const Edge& e = topology.edges[id];
     if (e.face_count < 2) continue;
+    detail::count_work(2 * uint64_t(e.face_count));
     const uint32_t* faces = topology.edge_faces.data() + e.first;
     uint32_t first[2][2] = {{kNone, kNone}, {kNone, kNone}};  // [direction][0: first, 1: second]
     for (uint32_t i = 0; i < e.face_count; ++i) {
@@ -95,8 +98,11 @@ bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_cou
       }
     }
     auto by_end = [](const Half& x, const Half& y) { return x.to != y.to ? x.to < y.to : x.tri < y.tri; };
+    uint64_t compared = 0;
+    auto counted = [&compared, &by_end](const Half& x, const Half& y) { return ++compared, by_end(x, y); };
     for (size_t i = 0; i < vertex_count; ++i)
-      if (start[i + 1] - start[i] > 1) std::sort(half.begin() + start[i], half.begin() + start[i + 1], by_end);
+      if (start[i + 1] - start[i] > 1) std::sort(half.begin() + start[i], half.begin() + start[i + 1], counted);
+    detail::count_work(compared + half.size());
     // The first half-edge from `from` to `to` in triangle order, other than triangle `not_tri`.
     auto find = [&](uint32_t from, uint32_t to, uint32_t not_tri) -> const Half* {
       const Half* b = half.data() + start[from];

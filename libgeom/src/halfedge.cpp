@@ -17,6 +17,8 @@
 #include <mutex>
 #include <vector>
 
+#include "work_count.h"
+
 namespace geom {
 
 HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count) {
@@ -29,6 +31,8 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
   // add_face reports each refusal on OpenMesh's process-wide error stream; the
   // summary counts them instead. Silenced once (toggling it back on would race
   // between threads baking in parallel).
+  std::vector<uint32_t> around(positions.size(), 0);  // faces added at each vertex (for the work count)
+  uint64_t steps = 0;
   static std::once_flag silenced;
   std::call_once(silenced, [] { omerr().disable(); });
   for (size_t f = 0; f < triangle_count; ++f) {
@@ -37,10 +41,13 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
       ++s.skipped_faces;
       continue;
     }
-    if (mesh.add_face(vh[v[0]], vh[v[1]], vh[v[2]]).is_valid())
+    steps += 1 + around[v[0]] + around[v[1]] + around[v[2]];
+    if (mesh.add_face(vh[v[0]], vh[v[1]], vh[v[2]]).is_valid()) {
       ++s.added_faces;
-    else
+      ++around[v[0]], ++around[v[1]], ++around[v[2]];
+    } else {
       ++s.refused_faces;
+    }
   }
   OpenMesh::HPropHandleT<bool> visited;
   mesh.add_property(visited);
@@ -52,8 +59,10 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
     do {
       mesh.property(visited, g) = true;
       g = mesh.next_halfedge_handle(g);
+      ++steps;
     } while (g != h && !mesh.property(visited, g));
   }
+  detail::count_work(steps);
   return s;
 }
 
@@ -67,6 +76,11 @@ inline int corner_of(const uint32_t* f, uint32_t v) { return f[0] == v ? 0 : f[1
 bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_count, const Topology& t) {
   std::vector<uint8_t> seen(triangle_count, 0);  // bit k: corner k visited
   std::vector<uint8_t> fans(vertex_count, 0);
+  uint64_t steps = 0;
+  struct Count {  // added on every way out
+    uint64_t& steps;
+    ~Count() { detail::count_work(steps); }
+  } count{steps};
   auto other_face = [&](uint32_t e, uint32_t f) -> uint32_t {
     const Edge& edge = t.edges[e];
     if (edge.face_count != 2) return Topology::kNone;
@@ -90,6 +104,7 @@ bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_c
           const int k = corner_of(indices + 3 * size_t(g), v);
           if (seen[g] >> k & 1) break;  // back at the start: a closed fan
           seen[g] |= uint8_t(1 << k);
+          ++steps;
           const uint32_t e0 = t.face_edges[3 * size_t(g) + k], e1 = t.face_edges[3 * size_t(g) + (k + 2) % 3];
           e = e0 == e ? e1 : e0;
           f = g;
@@ -130,16 +145,19 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
     leaving[from] = i;
   }
   std::vector<uint8_t> walked(t.edges.size(), 0);
+  uint64_t steps = t.edges.size();
   for (uint32_t i = 0; i < t.edges.size(); ++i) {
     if (t.edges[i].kind != EdgeKind::Boundary || walked[i]) continue;
     ++s.boundary_loops;
     for (uint32_t e = i; e != Topology::kNone && !walked[e];) {
       walked[e] = 1;
+      ++steps;
       uint32_t from, to;
       from_to(t.edges[e], from, to);
       e = leaving[to];
     }
   }
+  detail::count_work(steps);
   return s;
 }
 

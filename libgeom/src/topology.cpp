@@ -11,6 +11,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "work_count.h"
+
 namespace geom {
 namespace {
 
@@ -87,9 +89,12 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     HalfEdge* b = half.data() + start[v0];
     HalfEdge* e = half.data() + start[v0 + 1];
     if (b == e) continue;
-    std::sort(b, e, [](const HalfEdge& x, const HalfEdge& y) {
+    uint64_t compared = 0;
+    std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
+      ++compared;
       return x.other != y.other ? x.other < y.other : x.face != y.face ? x.face < y.face : x.k < y.k;
     });
+    detail::count_work(compared + uint64_t(e - b));
     for (HalfEdge* run = b; run != e;) {
       HalfEdge* end = run;
       while (end != e && end->other == run->other) ++end;
