@@ -134,7 +134,9 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
                                           scene.indices.data(), scene.indices.size(), options.weld_tolerance));
     const WeldResult& w = *kept_weld;
     const PositionSpan welded = positions_of(w.positions.data(), w.vertex_count());
-    Topology topo = build_topology(welded, w.indices.data(), tc, options.topology);
+    TopologyOptions topology_options = options.topology;
+    topology_options.dihedral_angles = false;  // no section holds an angle
+    Topology topo = build_topology(welded, w.indices.data(), tc, topology_options);
 
     // The report, field by field as geom/report.h's analyze() fills it.
     r.report.file = name;

@@ -92,7 +92,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     uint64_t compared = 0;
     std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
       ++compared;
-      return x.other != y.other ? x.other < y.other : x.face != y.face ? x.face < y.face : x.k < y.k;
+      return x.other != y.other ? x.other < y.other : x.face < y.face;  // a face meets (v0, other) once
     });
     detail::count_work(compared + uint64_t(e - b));
     for (HalfEdge* run = b; run != e;) {
@@ -160,10 +160,11 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     if ((t.face_flags[f0] | t.face_flags[f1]) & kFaceZeroArea) continue;
     const Vec n0 = normal[f0], n1 = normal[f1];
     const double c = std::max(-1.0, std::min(1.0, dot(n0, n1)));
-    const double theta = std::acos(c) * 180.0 / M_PI;  // angle between the normals
+    // The angle between the normals, only where asked for.
+    const double theta = options.dihedral_angles ? std::acos(c) * 180.0 / M_PI : 0.0;
     if (c >= coplanar_cos) {
       e.shape = EdgeShape::Coplanar;
-      e.dihedral_degrees = 180.0f;
+      e.dihedral_degrees = options.dihedral_angles ? 180.0f : 0.0f;
       ++s.coplanar_edges;
       continue;
     }
@@ -173,11 +174,11 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     const double side = dot(n0, sub(positions[far], positions[e.v0]));
     if (side < 0.0) {
       e.shape = EdgeShape::Convex;
-      e.dihedral_degrees = float(180.0 - theta);
+      e.dihedral_degrees = options.dihedral_angles ? float(180.0 - theta) : 0.0f;
       ++s.convex_edges;
     } else {
       e.shape = EdgeShape::Concave;
-      e.dihedral_degrees = float(180.0 + theta);
+      e.dihedral_degrees = options.dihedral_angles ? float(180.0 + theta) : 0.0f;
       ++s.concave_edges;
     }
   }
