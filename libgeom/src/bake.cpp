@@ -3,10 +3,15 @@
 // algorithm per file); this file only chooses, converts and lays out.
 #include "geom/bake.h"
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <new>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
@@ -109,6 +114,16 @@ bool finite4(const double v[4]) {
 }
 
 }  // namespace
+
+bool keep_memory_across_bakes() {
+#if defined(__GLIBC__)
+  // No mmap'd chunks (they are unmapped on free; glibc caps the mmap threshold
+  // at 32 MiB, below a large mesh's buffers), no trimming of the heap's top.
+  return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
+#else
+  return false;
+#endif
+}
 
 BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
   BakeResult r;

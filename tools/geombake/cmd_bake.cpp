@@ -304,6 +304,7 @@ int run_bake(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "Error: %s\n%s", args.error().c_str(), kBakeHelp);
     return 2;
   }
+  geom::keep_memory_across_bakes();  // each input reuses the pages of the ones before
   geom::ImportOptions import_options;
   geom::BakeOptions options;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
