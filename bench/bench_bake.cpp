@@ -414,26 +414,77 @@ double peak_extra(size_t (*op)(const Input&), const Input& in) {
   return extra;
 }
 
-// `geombake bake FILE -o OUT -j 1` in a child: wall seconds, CPU seconds, peak RSS.
-bool run_cli(const Input& in, double& wall, double& cpu, double& peak) {
-  const std::string out = scratch_dir() + "/bench_bake_" + std::to_string(getpid()) + ".gbake";
+// `geombake bake FILE -o OUT -j 1` in a child: wall seconds, CPU seconds, peak
+// RSS. The children are forked by a small process started first thing in
+// main() (a child forked from this one, with every input in memory, would
+// count this process's pages in its peak until it execs).
+struct Spawner {
+  int request = -1, reply = -1;
+};
+Spawner& spawner() {
+  static Spawner s;
+  return s;
+}
+
+struct CliRun {
+  double wall = 0, cpu = 0, peak = 0;
+  int ok = 0;
+};
+
+CliRun spawn_cli(const char* input, const char* output) {
+  CliRun r;
   const auto t0 = std::chrono::steady_clock::now();
   const pid_t pid = fork();
-  if (pid < 0) return false;
+  if (pid < 0) return r;
   if (pid == 0) {
     const int null = open("/dev/null", O_WRONLY);
     dup2(null, 1), dup2(null, 2);
-    execl(GEOMBAKE_EXE, GEOMBAKE_EXE, "bake", in.file.c_str(), "-o", out.c_str(), "-j", "1", (char*)nullptr);
+    execl(GEOMBAKE_EXE, GEOMBAKE_EXE, "bake", input, "-o", output, "-j", "1", (char*)nullptr);
     _exit(127);
   }
   int status = 0;
   rusage ru{};
-  if (wait4(pid, &status, 0, &ru) != pid) return false;
-  wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  cpu = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-  peak = double(ru.ru_maxrss) * 1024.0;
-  unlink(out.c_str());
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (wait4(pid, &status, 0, &ru) != pid) return r;
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.cpu = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+  r.peak = double(ru.ru_maxrss) * 1024.0;
+  r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  unlink(output);
+  return r;
+}
+
+// Requests: "INPUT\nOUTPUT\n"; replies: a CliRun.
+void start_spawner() {
+  int req[2], rep[2];
+  if (pipe(req) != 0 || pipe(rep) != 0) return;
+  const pid_t pid = fork();
+  if (pid < 0) return;
+  if (pid == 0) {
+    close(req[1]), close(rep[0]);
+    FILE* in = fdopen(req[0], "r");
+    char a[4096], b[4096];
+    while (in && std::fgets(a, sizeof a, in) && std::fgets(b, sizeof b, in)) {
+      a[std::strcspn(a, "\n")] = 0, b[std::strcspn(b, "\n")] = 0;
+      const CliRun r = spawn_cli(a, b);
+      if (write(rep[1], &r, sizeof r) != ssize_t(sizeof r)) break;
+    }
+    _exit(0);
+  }
+  close(req[0]), close(rep[1]);
+  spawner().request = req[1];
+  spawner().reply = rep[0];
+}
+
+bool run_cli(const Input& in, double& wall, double& cpu, double& peak) {
+  if (spawner().request < 0) return false;
+  const std::string out = scratch_dir() + "/bench_bake_" + std::to_string(getpid()) + ".gbake";
+  const std::string msg = in.file + "\n" + out + "\n";
+  CliRun r;
+  if (write(spawner().request, msg.data(), msg.size()) != ssize_t(msg.size()) ||
+      read(spawner().reply, &r, sizeof r) != ssize_t(sizeof r))
+    return false;
+  wall = r.wall, cpu = r.cpu, peak = r.peak;
+  return r.ok;
 }
 
 struct Summary {
@@ -541,6 +592,7 @@ BENCHMARK(BM_WeldAdjacency)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MeshoptAdjacency)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
+  start_spawner();  // before any input exists: see run_cli
   // As geombake bake does: freed memory kept, so repeated bakes reuse their
   // pages as a batch's inputs do (the peers' runs get the same allocator).
   const bool kept = geom::keep_memory_across_bakes();

@@ -19,7 +19,8 @@ namespace {
 struct HalfEdge {
   uint32_t other;  // the larger vertex
   uint32_t face;
-  uint8_t k;  // which edge of the face: (i_k, i_{k+1})
+  uint32_t third;  // the face's vertex off the edge
+  uint8_t k;       // which edge of the face: (i_k, i_{k+1})
   uint8_t reversed;
 };
 
@@ -71,7 +72,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       for (int k = 0; k < 3; ++k) {
         uint32_t a = v[k], b = v[(k + 1) % 3];
         uint32_t lo = std::min(a, b), hi = std::max(a, b);
-        half[fill[lo]++] = {hi, uint32_t(f), uint8_t(k), uint8_t(a > b)};
+        half[fill[lo]++] = {hi, uint32_t(f), v[(k + 2) % 3], uint8_t(k), uint8_t(a > b)};
       }
     }
   }
@@ -105,7 +106,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
         t.edge_faces.push_back(h->face << 1 | h->reversed);
         t.face_edges[3 * size_t(h->face) + h->k] = id;
         if (edge.face_count < 2) continue;
-        const uint32_t third = indices[3 * size_t(h->face) + (h->k + 2) % 3];
+        const uint32_t third = h->third;
         if (h->k == 0 && seen_at[third] == id) {
           t.face_flags[h->face] |= kFaceDuplicate;
           ++s.duplicate_triangles;
