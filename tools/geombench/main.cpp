@@ -28,12 +28,13 @@
 // --quick (CI): 160x120 images, sizes 256 and 1024, scenes default, pipes,
 // grazing, one frame, bake throughput on 10k and 50k triangles.
 // cube needs a point or spot light: it has no rows for directional-light scenes.
-// A scene whose data is missing (the OpenArena map, the shared bunny) is skipped
+// A scene whose data is missing (the OpenArena map, the vendored bunny) is skipped
 // with a warning and listed under "skipped" in the JSON and the summary.
 // Exit: 0 on success, 1 when the GL context or a render fails, 2 on bad usage.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -390,6 +391,15 @@ int main(int argc, char** argv) {
   if (const char* e = std::getenv("GEOMVIEW_SHADERS")) shader_dir = e;
   if (args.has("--shaders")) shader_dir = args.get("--shaders");
   const std::string out_dir = args.get("-o");
+  if (!out_dir.empty()) {  // created before the run: minutes of work must not end unable to write
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (!std::filesystem::is_directory(out_dir)) {
+      std::fprintf(stderr, "Error: %s: cannot create the output folder%s%s\n", out_dir.c_str(), ec ? ": " : "",
+                   ec ? ec.message().c_str() : "");
+      return 1;
+    }
+  }
 
   // Bake throughput first: it forks, which is best done before a GL context exists.
   std::vector<geombench::BakeRow> bake;
@@ -565,7 +575,7 @@ int main(int argc, char** argv) {
                     write_text(out_dir + "/plot.svg", plot_svg(rows, scenes_done, tech_names, kind)) &&
                     write_text(out_dir + "/summary.md", md.str());
     if (!ok) {
-      std::fprintf(stderr, "Error: %s: cannot write the results (does the folder exist?)\n", out_dir.c_str());
+      std::fprintf(stderr, "Error: %s: cannot write the results\n", out_dir.c_str());
       return 1;
     }
     std::printf("\nwrote %s/results.csv, results.json, bake.csv, plot.svg, summary.md\n", out_dir.c_str());
