@@ -1,7 +1,7 @@
 // libFuzzer target: Draco-compressed glTF geometry (KHR_draco_mesh_compression).
 //
 // The fuzzer's bytes are a Draco stream (seeded with the .drc files of
-// /work/shared/data/draco); fuzz_import.h wraps them as the BIN chunk of a
+// tests/data/draco); fuzz_import.h wraps them as the BIN chunk of a
 // fixed GLB whose only primitive points its Draco extension at them, and
 // imports that through geom::import_memory, so the whole path runs: GLB
 // framing, bufferView checks, Draco's decoder, the checks of the decoded faces

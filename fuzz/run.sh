@@ -2,8 +2,8 @@
 # fuzz/run.sh TARGET SECONDS [libFuzzer options...]
 #
 # Builds the libFuzzer targets with clang (-fsanitize=fuzzer,address,undefined)
-# in build-fuzz/, seeds TARGET's corpus from real files (/work/shared/data or
-# GEOM_SHARED_DATA, Debian's assimp-testmodels, openscad-testing-data,
+# in build-fuzz/, seeds TARGET's corpus from real files (the vendored tests/data, or
+# GEOM_TEST_DATA, Debian's assimp-testmodels, openscad-testing-data,
 # openarena-081-maps/-players), runs it for SECONDS, and prints the execution
 # count, the corpus size and the findings. TARGET: gltf draco obj ply off stl
 # bsp md3 baked (fuzz/fuzz_TARGET.cpp). The corpus grows across runs in
@@ -24,8 +24,7 @@ command -v clang++ >/dev/null || { echo "Error: clang++ not found: apt-get insta
 
 root=$PWD
 build=$root/build-fuzz
-data=${GEOM_SHARED_DATA:-$root/../shared/data}
-[ -d "$data" ] || data=/work/shared/data
+data=${GEOM_TEST_DATA:-$root/tests/data}
 if [ ! -f "$build/build.ninja" ]; then
   CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOM_FUZZ=ON \
     -DGEOM_BUILD_TESTS=OFF -DGEOM_BUILD_BENCH=OFF -DGEOM_BUILD_VIEWER=OFF >/dev/null

@@ -24,8 +24,8 @@ extern char** environ;
 
 namespace cli {
 
-// Under ASan/UBSan every run is slower and larger: limits scale by this.
-#if defined(__SANITIZE_ADDRESS__)
+// Under ASan/UBSan or TSan every run is slower and larger: limits scale by this.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 constexpr double kSanitizerFactor = 4;
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)

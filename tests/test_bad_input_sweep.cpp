@@ -48,7 +48,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kData = GEOM_SHARED_DATA;
+const std::string kData = GEOM_TEST_DATA;
 const std::string kAssimp = "/usr/share/assimp/models";
 const std::string kOpenscad = "/usr/share/openscad";
 const double kCpuLimit = 1.0 * cli::kSanitizerFactor;
@@ -413,7 +413,7 @@ TEST(BadInputSweep, TruncationsInBatch) {
     const std::set<std::string> out_set(outputs.begin(), outputs.end());
     size_t refused = 0;
     for (const std::string& in : inputs) {
-      const std::string out_name = fs::path(in).stem().string() + ".gbake";
+      const std::string out_name = fs::path(in).filename().string() + ".gbake";
       const bool error_line = r.err.find("Error: " + in + ": ") != std::string::npos;
       const bool baked = out_set.count(out_name) > 0;
       EXPECT_NE(error_line, baked) << in;  // exactly one of the two

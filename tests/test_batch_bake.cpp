@@ -36,7 +36,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kData = GEOM_SHARED_DATA;
+const std::string kData = GEOM_TEST_DATA;
 const std::string kAssimp = "/usr/share/assimp/models";
 const std::string kMaps = "/usr/share/games/openarena/baseoa/pak1-maps.pk3";
 const std::string kPlayers = "/usr/share/games/openarena/baseoa/pak2-players.pk3";
@@ -133,7 +133,7 @@ TEST(BatchBake, FailingInputsAmongGoodOnes) {
   EXPECT_NE(r.err.find("Error: " + nan_obj + ": "), std::string::npos);
   EXPECT_NE(r.err.find("Error: " + missing + ": cannot open"), std::string::npos);
   EXPECT_EQ(count_of(r.err, "Error: "), 2u);
-  EXPECT_EQ(cli::listing(work / "out"), (std::vector<std::string>{"Wuson.gbake", "cube_att.gbake"}));
+  EXPECT_EQ(cli::listing(work / "out"), (std::vector<std::string>{"Wuson.off.gbake", "cube_att.obj.gbake"}));
   // The summary: baked and failed counts, on the last line of stderr.
   EXPECT_NE(r.err.find("2 baked, 2 failed of 4 inputs"), std::string::npos);
   // Not a terminal here: no progress display.
@@ -155,7 +155,7 @@ TEST(BatchBake, ListFileAndDirectory) {
   SCOPED_TRACE(cli::describe(r));
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(cli::listing(work / "out"),
-            (std::vector<std::string>{"Cube.gbake", "a.gbake", "b.gbake", "test_nm.gbake"}));
+            (std::vector<std::string>{"Cube.off.gbake", "a.obj.gbake", "b.ply.gbake", "test_nm.obj.gbake"}));
   EXPECT_NE(r.err.find("4 baked, 0 failed of 4 inputs"), std::string::npos);
   // An unreadable list file is a usage error naming it.
   r = cli::run({"bake", "--list", (work / "nope.txt").string(), "-o", (work / "out2").string()}, work / "log2");
@@ -181,9 +181,9 @@ TEST(BatchBake, DepfileContent) {
     for (char c : s) o += c == ' ' ? std::string("\\ ") : std::string(1, c);
     return o;
   };
-  EXPECT_NE(d.find(out + "/BoxTextured.gbake: " + gltf + " " + bin + "\n"), std::string::npos) << d;
-  EXPECT_NE(d.find(out + "/head.gbake: " + kPlayers + "\n"), std::string::npos) << d;
-  EXPECT_NE(d.find(out + "/a\\ b.gbake: " + esc(spaced) + "\n"), std::string::npos) << d;
+  EXPECT_NE(d.find(out + "/BoxTextured.gltf.gbake: " + gltf + " " + bin + "\n"), std::string::npos) << d;
+  EXPECT_NE(d.find(out + "/head.md3.gbake: " + kPlayers + "\n"), std::string::npos) << d;
+  EXPECT_NE(d.find(out + "/a\\ b.obj.gbake: " + esc(spaced) + "\n"), std::string::npos) << d;
   EXPECT_EQ(count_of(d, "\n"), 3u) << d;
 }
 
@@ -205,7 +205,7 @@ TEST(BatchBake, NinjaAndMakeRebuildFromTheDepfile) {
     int rc = std::system(full.c_str());
     return std::make_pair(rc, cli::slurp(work / "out.txt"));
   };
-  if (std::system("command -v ninja >/dev/null && command -v make >/dev/null") != 0) GTEST_SKIP() << "no ninja/make";
+  ASSERT_EQ(std::system("command -v ninja >/dev/null && command -v make >/dev/null"), 0) << "no ninja/make (scripts/setup.sh)";
   auto [rc, log] = sh("ninja && make");
   ASSERT_EQ(rc, 0) << log;
   ASSERT_TRUE(fs::exists(work / "box.gbake") && fs::exists(work / "box_make.gbake")) << log;
@@ -262,7 +262,7 @@ TEST(BatchBake, MaxTriangles) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("Error: " + big + ": "), std::string::npos);
   EXPECT_NE(r.err.find("over the limit of 100"), std::string::npos);
-  EXPECT_EQ(cli::listing(work / "out"), std::vector<std::string>{"cube_att.gbake"});
+  EXPECT_EQ(cli::listing(work / "out"), std::vector<std::string>{"cube_att.obj.gbake"});
 }
 
 // --max-memory: the file, the import's claims and the bake's estimate must
@@ -275,7 +275,7 @@ TEST(BatchBake, MaxMemory) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("Error: " + big + ": "), std::string::npos);
   EXPECT_NE(r.err.find("over the limit of 3145728"), std::string::npos);
-  EXPECT_EQ(cli::listing(work / "out"), std::vector<std::string>{"cube_att.gbake"});
+  EXPECT_EQ(cli::listing(work / "out"), std::vector<std::string>{"cube_att.obj.gbake"});
   // A file over the limit by its size alone.
   r = cli::run({"bake", big, "--max-memory", "100K", "-o", (work / "one.gbake").string()}, work / "log2");
   EXPECT_EQ(r.exit_code, 1);
@@ -303,11 +303,11 @@ TEST(BatchBake, Timeout) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("Error: " + slow + ": timed out after 0.001 s (--timeout)"), std::string::npos);
   const std::vector<std::string> left = cli::listing(work / "out");
-  EXPECT_EQ(std::count(left.begin(), left.end(), "oa_ctf2.gbake"), 0);
+  EXPECT_EQ(std::count(left.begin(), left.end(), "oa_ctf2.bsp.gbake"), 0);
   // A generous limit bakes both.
   r = cli::run({"bake", small, slow, "--timeout", "300", "-o", (work / "out2").string()}, work / "log2");
   EXPECT_EQ(r.exit_code, 0) << cli::describe(r);
-  EXPECT_EQ(cli::listing(work / "out2"), (std::vector<std::string>{"cube_att.gbake", "oa_ctf2.gbake"}));
+  EXPECT_EQ(cli::listing(work / "out2"), (std::vector<std::string>{"cube_att.obj.gbake", "oa_ctf2.bsp.gbake"}));
 }
 
 // A CPU bomb found by fuzz/fuzz_draco: 393 bytes whose texture-coordinate
@@ -330,6 +330,6 @@ TEST(BatchBake, DracoBombIsRefusedAtOnce) {
                        ": mesh 0 primitive 0: Draco data in bufferView 0 cannot be decoded: "
                        "its texture-coordinate prediction claims 1329807698 orientations for 36 corners"),
             std::string::npos);
-  EXPECT_EQ(cli::listing(work / "out"), std::vector<std::string>{"cube_att.gbake"});
+  EXPECT_EQ(cli::listing(work / "out"), std::vector<std::string>{"cube_att.obj.gbake"});
   EXPECT_LT(r.cpu_seconds, 1.0 * cli::kSanitizerFactor);
 }

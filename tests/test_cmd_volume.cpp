@@ -79,7 +79,7 @@ bool closed(const Obj& o) {
 
 TEST(CmdVolume, RealFilesGiveClosedVolumes) {
   const std::string assimp = "/usr/share/assimp/models/";
-  const std::string draco = std::string(GEOM_SHARED_DATA) + "/draco/";
+  const std::string draco = std::string(GEOM_TEST_DATA) + "/draco/";
   struct Case {
     std::string file, light;
   };
@@ -93,7 +93,7 @@ TEST(CmdVolume, RealFilesGiveClosedVolumes) {
       {std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf", "1,6,2,1"},
   };
   for (const Case& c : cases) {
-    if (!exists(c.file)) continue;  // assimp-testmodels not installed
+    ASSERT_TRUE(exists(c.file)) << c.file << " is missing (assimp-testmodels: scripts/setup.sh)";
     const std::string out = kOut + ".obj";
     std::remove(out.c_str());
     const Outcome r = run("'" + c.file + "' --light " + c.light + " -o '" + out + "' -v");
@@ -113,7 +113,7 @@ TEST(CmdVolume, RealFilesGiveClosedVolumes) {
 TEST(CmdVolume, BadInputSaysErrorAndWritesNothing) {
   const std::string out = kOut + "_bad.obj";
   const std::string box = "/usr/share/assimp/models/OBJ/box.obj";
-  const std::string draco = std::string(GEOM_SHARED_DATA) + "/draco/";
+  const std::string draco = std::string(GEOM_TEST_DATA) + "/draco/";
   struct Case {
     std::string args, says;
   };

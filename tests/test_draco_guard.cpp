@@ -41,7 +41,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kData = GEOM_SHARED_DATA;
+const std::string kData = GEOM_TEST_DATA;
 
 // The four instantiations libdraco.so uses and draco_guard.cpp replaces.
 const char* const kGuarded[] = {

@@ -34,8 +34,8 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-const std::string kValidator = std::string(GEOM_SHARED_DATA) + "/gltf-validator";
-const std::string kDraco = std::string(GEOM_SHARED_DATA) + "/draco";
+const std::string kValidator = std::string(GEOM_TEST_DATA) + "/gltf-validator";
+const std::string kDraco = std::string(GEOM_TEST_DATA) + "/draco";
 const std::string kAssimp = "/usr/share/assimp/models/glTF2";
 
 bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
@@ -797,7 +797,7 @@ const std::set<std::string> kGeometryBreaking = {
     "GLB_EMPTY_CHUNK"};
 
 TEST(ImportGltf, ValidatorSweep) {
-  if (!fs::exists(kValidator)) GTEST_SKIP() << kValidator << " missing";
+  ASSERT_TRUE(fs::exists(kValidator)) << kValidator << " missing";
   auto index = read_index(kValidator + "/INDEX_expected_issues.tsv");
   ASSERT_GT(index.size(), 300u);
   std::vector<std::string> files;
@@ -897,7 +897,7 @@ void expect_same_extents(const geom::Scene& sa, const geom::Scene& sb) {
 }
 
 TEST(ImportGltf, DracoMatchesPlain) {
-  if (!fs::exists(kDraco)) GTEST_SKIP() << kDraco << " missing";
+  ASSERT_TRUE(fs::exists(kDraco)) << kDraco << " missing";
   expect_same_mesh(kDraco + "/Box/glTF_Binary/Box_Draco.glb", kDraco + "/Box/glTF/Box.gltf");
   expect_same_mesh(kDraco + "/Box/glTF_Binary/Box_Draco.glb", kDraco + "/Box/glTF_Binary/Box.glb");
   expect_same_mesh(kDraco + "/Duck/glTF/Duck.gltf", kDraco + "/Duck/glTF_Binary/Duck.glb");
@@ -913,7 +913,7 @@ TEST(ImportGltf, DracoMatchesPlain) {
 // instanced from 65,311 in its 29 meshes), every primitive instance decoded
 // from Draco, over the same extents.
 TEST(ImportGltf, DracoEngineMatchesPlain) {
-  if (!fs::exists(kAssimp + "/draco/2CylinderEngine.gltf")) GTEST_SKIP() << "assimp-testmodels missing";
+  ASSERT_TRUE(fs::exists(kAssimp + "/draco/2CylinderEngine.gltf")) << "assimp-testmodels missing (scripts/setup.sh)";
   auto d = geom::import_file(kAssimp + "/draco/2CylinderEngine.gltf");
   auto p = geom::import_file(kAssimp + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
   ASSERT_TRUE(d.ok) << d.error;
@@ -942,7 +942,7 @@ TEST(ImportGltf, BrokenDracoIsRefused) {
 // ------------------------------------------------------------------ 4. assimp
 
 TEST(ImportGltf, AssimpBrokenFiles) {
-  if (!fs::exists(kAssimp)) GTEST_SKIP() << "assimp-testmodels missing";
+  ASSERT_TRUE(fs::exists(kAssimp)) << "assimp-testmodels missing (scripts/setup.sh)";
   struct Case {
     std::string file;
     bool loads;
@@ -978,7 +978,7 @@ TEST(ImportGltf, AssimpBrokenFiles) {
 
 // Every glTF of assimp-testmodels loads or is refused cleanly.
 TEST(ImportGltf, AssimpSweep) {
-  if (!fs::exists(kAssimp)) GTEST_SKIP() << "assimp-testmodels missing";
+  ASSERT_TRUE(fs::exists(kAssimp)) << "assimp-testmodels missing (scripts/setup.sh)";
   int loaded = 0, refused = 0;
   for (const auto& e : fs::recursive_directory_iterator(kAssimp)) {
     std::string ext = e.path().extension().string();

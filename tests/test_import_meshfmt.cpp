@@ -28,7 +28,7 @@ using namespace geom;
 namespace {
 
 const std::string kAssimp = "/usr/share/assimp/models";
-const std::string kDraco = std::string(GEOM_SHARED_DATA) + "/draco";
+const std::string kDraco = std::string(GEOM_TEST_DATA) + "/draco";
 const std::string kOpenscad = "/usr/share/openscad";  // Debian's openscad-testing-data: broken STL files
 
 fs::path temp_path() { return fs::temp_directory_path() / ("geom_test_meshfmt_" + std::to_string(::getpid())); }
@@ -821,6 +821,7 @@ bool is_mesh_format(const fs::path& p) {
 std::vector<std::string> real_mesh_files() {
   std::vector<std::string> files;
   for (const std::string& root : {kAssimp, kDraco, kOpenscad}) {
+    EXPECT_TRUE(fs::exists(root)) << root << " is missing (tests/data, or scripts/setup.sh's packages)";
     if (!fs::exists(root)) continue;
     for (auto& e : fs::recursive_directory_iterator(root))
       if (e.is_regular_file() && is_mesh_format(e.path())) files.push_back(e.path().string());
@@ -831,7 +832,7 @@ std::vector<std::string> real_mesh_files() {
 
 TEST(RealFiles, ReportCountsEqualABruteForceCountOnEveryFileThatLoads) {
   std::vector<std::string> files = real_mesh_files();
-  ASSERT_GT(files.size(), 60u) << "assimp-testmodels or the shared Draco data is missing";
+  ASSERT_GT(files.size(), 60u) << "assimp-testmodels or the vendored Draco data is missing";
   size_t loaded = 0, triangles = 0;
   for (const std::string& f : files) {
     ImportResult r = import_file(f);

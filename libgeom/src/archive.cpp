@@ -2,10 +2,19 @@
 // ships as zip archives, and a maintained library reads them better than we would.
 #include "archive.h"
 
+#include <sys/stat.h>
 #include <zip.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <unordered_map>
+
+#include "importers.h"
 
 namespace geom::detail {
 namespace {
@@ -17,7 +26,22 @@ struct ZipCloser {
   }
 };
 
+// zip_open on a FIFO would block, on a device read forever: regular files only.
+bool regular_archive(const std::string& archive, struct stat& st, std::string& error) {
+  if (::stat(archive.c_str(), &st) != 0) {
+    error = "cannot open archive '" + archive + "': " + std::strerror(errno);
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    error = "archive '" + archive + "' is not a regular file: not read";
+    return false;
+  }
+  return true;
+}
+
 zip_t* open_archive(const std::string& archive, std::string& error) {
+  struct stat st;
+  if (!regular_archive(archive, st, error)) return nullptr;
   int code = 0;
   zip_t* z = zip_open(archive.c_str(), ZIP_RDONLY, &code);
   if (!z) {
@@ -35,15 +59,63 @@ bool ends_with_nocase(const std::string& s, const std::string& suffix) {
                     [](char a, char b) { return std::tolower((unsigned char)a) == std::tolower((unsigned char)b); });
 }
 
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// Open archives, kept between reads so that N members of one archive cost one
+// parse of its central directory, not N (N inputs from one .pk3 were O(N^2)).
+// An entry is reopened when the file changes (device, inode, size or mtime).
+struct OpenArchive {
+  std::mutex mutex;  // a zip_t serves one reader at a time
+  zip_t* z = nullptr;
+  struct stat st {};
+  std::unordered_map<std::string, zip_uint64_t> by_lower_name;  // case-insensitive lookup, O(1)
+  ~OpenArchive() {
+    if (z) zip_discard(z);
+  }
+};
+std::mutex g_cache_mutex;
+std::map<std::string, std::shared_ptr<OpenArchive>> g_cache;
+
+std::shared_ptr<OpenArchive> cached_archive(const std::string& archive, std::string& error) {
+  struct stat st;
+  if (!regular_archive(archive, st, error)) return nullptr;
+  std::lock_guard<std::mutex> lock(g_cache_mutex);
+  auto it = g_cache.find(archive);
+  if (it != g_cache.end() && it->second->st.st_dev == st.st_dev && it->second->st.st_ino == st.st_ino &&
+      it->second->st.st_size == st.st_size && it->second->st.st_mtim.tv_sec == st.st_mtim.tv_sec &&
+      it->second->st.st_mtim.tv_nsec == st.st_mtim.tv_nsec)
+    return it->second;
+  auto a = std::make_shared<OpenArchive>();
+  a->z = open_archive(archive, error);
+  if (!a->z) return nullptr;
+  a->st = st;
+  const zip_int64_t n = zip_get_num_entries(a->z, 0);
+  for (zip_int64_t i = 0; i < n; ++i)
+    if (const char* name = zip_get_name(a->z, zip_uint64_t(i), 0))
+      a->by_lower_name.emplace(lower(name), zip_uint64_t(i));  // the first of equal names wins, as libzip's
+  if (g_cache.size() >= 16) g_cache.clear();  // bounded: the handles in use stay alive through their shared_ptr
+  g_cache[archive] = a;
+  return a;
+}
+
 }  // namespace
 
 bool read_archive_member(const std::string& archive, const std::string& member, std::vector<unsigned char>& bytes,
                          uint64_t max_bytes, std::string& error) {
-  ZipCloser z{open_archive(archive, error)};
-  if (!z.z) return false;
+  std::shared_ptr<OpenArchive> a = cached_archive(archive, error);
+  if (!a) return false;
+  std::lock_guard<std::mutex> lock(a->mutex);
+  zip_int64_t index = zip_name_locate(a->z, member.c_str(), 0);  // the exact name first
+  if (index < 0) {
+    auto it = a->by_lower_name.find(lower(member));
+    if (it != a->by_lower_name.end()) index = zip_int64_t(it->second);
+  }
   zip_stat_t st;
   zip_stat_init(&st);
-  if (zip_stat(z.z, member.c_str(), ZIP_FL_NOCASE, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
+  if (index < 0 || zip_stat_index(a->z, zip_uint64_t(index), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
     error = "no member '" + member + "' in archive '" + archive + "'";
     return false;
   }
@@ -52,20 +124,34 @@ bool read_archive_member(const std::string& archive, const std::string& member, 
             std::to_string(max_bytes);
     return false;
   }
-  if (st.size > (uint64_t(1) << 32)) {
+  const uint64_t memory = physical_memory_bytes();
+  if (st.size > (uint64_t(1) << 32) || (memory && st.size > memory)) {
     error = "member '" + member + "' claims " + std::to_string(st.size) + " bytes";
     return false;
   }
-  zip_file_t* f = zip_fopen(z.z, member.c_str(), ZIP_FL_NOCASE);
+  zip_file_t* f = zip_fopen_index(a->z, zip_uint64_t(index), 0);
   if (!f) {
-    error = "cannot open member '" + member + "': " + zip_strerror(z.z);
+    error = "cannot open member '" + member + "': " + zip_strerror(a->z);
     return false;
   }
-  bytes.resize(size_t(st.size));
-  zip_int64_t got = bytes.empty() ? 0 : zip_fread(f, bytes.data(), bytes.size());
+  // Read in steps, so that a header claiming more than the data holds costs
+  // only what is there.
+  bytes.clear();
+  zip_int64_t got = 0;
+  while (bytes.size() < st.size) {
+    const size_t at = bytes.size(), step = size_t(std::min<uint64_t>(st.size - at, uint64_t(16) << 20));
+    bytes.resize(at + step);
+    got = zip_fread(f, bytes.data() + at, step);
+    if (got <= 0) {
+      bytes.resize(at);
+      break;
+    }
+    bytes.resize(at + size_t(got));
+  }
   zip_fclose(f);
-  if (got < 0 || uint64_t(got) != st.size) {
-    error = "cannot read member '" + member + "' (corrupt archive?)";
+  if (got < 0 || bytes.size() != st.size) {
+    error = "cannot read member '" + member + "' (corrupt archive: " + std::to_string(bytes.size()) + " of " +
+            std::to_string(st.size) + " bytes)";
     return false;
   }
   return true;

@@ -4,16 +4,27 @@
 // per triangle, limits respected.
 #include "geom/import.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 #include "archive.h"
 #include "importers.h"
 
 namespace geom {
+
+uint64_t detail::physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : 0;
+}
+
 namespace {
 
 std::string lower_extension(const std::string& name) {
@@ -30,31 +41,64 @@ std::string directory_of(const std::string& path) {
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
 }
 
+std::string kind_of(mode_t m) {
+  if (S_ISDIR(m)) return "a directory";
+  if (S_ISFIFO(m)) return "a FIFO";
+  if (S_ISCHR(m)) return "a character device";
+  if (S_ISBLK(m)) return "a block device";
+  if (S_ISSOCK(m)) return "a socket";
+  return "not a regular file";
+}
+
+// Reads a regular file whole. Anything else (a FIFO, a device, a directory) is
+// refused by name before it is opened, and again by its descriptor after (it
+// may have been swapped in between); a file larger than the limit, or than this
+// machine's memory, is refused before anything is allocated.
 bool read_whole_file(const std::string& path, std::vector<unsigned char>& bytes, uint64_t max_bytes,
                      std::string& error) {
-  FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) {
-    error = "cannot open file";
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    error = std::string("cannot open file: ") + std::strerror(errno);
     return false;
   }
-  std::fseek(f, 0, SEEK_END);
-  long size = std::ftell(f);
-  std::fseek(f, 0, SEEK_SET);
-  if (size < 0) {
-    std::fclose(f);
-    error = "cannot read file (not a regular file?)";
+  if (!S_ISREG(st.st_mode)) {
+    error = kind_of(st.st_mode) + ", not a regular file: not read";
     return false;
   }
-  if (max_bytes && uint64_t(size) > max_bytes) {
-    std::fclose(f);
+  int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    error = std::string("cannot open file: ") + std::strerror(errno);
+    return false;
+  }
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    error = "not a regular file: not read";
+    return false;
+  }
+  const uint64_t size = uint64_t(st.st_size);
+  if (max_bytes && size > max_bytes) {
     error = "file is " + std::to_string(size) + " bytes, over the limit of " + std::to_string(max_bytes);
     return false;
   }
+  const uint64_t memory = detail::physical_memory_bytes();
+  if (memory && size > memory) {
+    error = "file is " + std::to_string(size) + " bytes, more than this machine's memory (" + std::to_string(memory) +
+            " bytes)";
+    return false;
+  }
   bytes.resize(size_t(size));
-  size_t got = size ? std::fread(bytes.data(), 1, bytes.size(), f) : 0;
-  std::fclose(f);
+  size_t got = 0;
+  while (got < bytes.size()) {
+    ssize_t n = ::read(fd, bytes.data() + got, std::min<size_t>(bytes.size() - got, size_t(1) << 30));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got += size_t(n);
+  }
   if (got != bytes.size()) {
-    error = "cannot read file";
+    error = "cannot read file (it shrank while being read?)";
     return false;
   }
   return true;
@@ -106,16 +150,23 @@ ImportResult import_memory(const std::string& name, const void* data, size_t siz
 
   const std::string ext = lower_extension(name);
   bool (*importer)(const detail::ImportInput&, Scene&, std::string&) = nullptr;
-  if (ext == "gltf" || ext == "glb") importer = detail::import_gltf;
-  else if (ext == "obj") importer = detail::import_obj;
-  else if (ext == "ply") importer = detail::import_ply;
-  else if (ext == "off") importer = detail::import_off;
-  else if (ext == "stl") importer = detail::import_stl;
-  else if (ext == "bsp") importer = detail::import_bsp;
-  else if (ext == "md3") importer = detail::import_md3;
+  if (ext == "gltf" || ext == "glb")
+    importer = detail::import_gltf;
+  else if (ext == "obj")
+    importer = detail::import_obj;
+  else if (ext == "ply")
+    importer = detail::import_ply;
+  else if (ext == "off")
+    importer = detail::import_off;
+  else if (ext == "stl")
+    importer = detail::import_stl;
+  else if (ext == "bsp")
+    importer = detail::import_bsp;
+  else if (ext == "md3")
+    importer = detail::import_md3;
   if (!importer) {
-    result.error = name + ": unknown file type '." + ext +
-                   "' (expected .gltf, .glb, .obj, .ply, .off, .stl, .bsp or .md3)";
+    result.error =
+        name + ": unknown file type '." + ext + "' (expected .gltf, .glb, .obj, .ply, .off, .stl, .bsp or .md3)";
     return result;
   }
   std::string error;
@@ -146,6 +197,16 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
   // "ARCHIVE.pk3:member/path" reads a member of a zip archive.
   size_t colon = path.find(".pk3:");
   if (colon == std::string::npos) colon = path.find(".zip:");
+  const std::string ext = lower_extension(path);
+  if (colon == std::string::npos && (ext == "pk3" || ext == "zip")) {  // an archive, no member named
+    std::vector<std::string> names;
+    if (!detail::list_archive_members(path, ".bsp", names, error))
+      result.error = path + ": " + error;
+    else
+      result.error = path + (names.empty() ? ": no .bsp map inside the archive"
+                                           : ": an archive: name a member (" + path + ":" + names[0] + ")");
+    return result;
+  }
   if (colon != std::string::npos) {
     std::string archive = path.substr(0, colon + 4);
     std::string member = path.substr(colon + 5);

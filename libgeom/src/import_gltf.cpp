@@ -72,6 +72,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -81,6 +82,7 @@
 #include "draco/metadata/geometry_metadata.h"
 #include "draco/metadata/metadata_decoder.h"
 #include "importers.h"
+#include "uri.h"
 
 namespace geom::detail {
 namespace {
@@ -218,6 +220,7 @@ struct SideTable {
   std::map<PrimKey, int> indices;  // primitive -> its indices accessor (absent: not indexed)
   std::vector<char> buffer_has_data;
   std::map<size_t, std::vector<unsigned char>> data_uri;  // buffer -> bytes decoded here
+  std::set<std::string> external;                          // the external files checked here: all tinygltf may read
 };
 
 bool extension_allowed(const std::string& e) {
@@ -233,8 +236,9 @@ bool extension_allowed(const std::string& e) {
   return e.rfind("KHR_materials_", 0) == 0 || e.rfind("EXT_texture_", 0) == 0 || e.rfind("EXT_materials_", 0) == 0;
 }
 
-// tinygltf's own decoding of URIs and joining with base_dir (mirrored so that the
-// file checked here is the file tinygltf then reads).
+// tinygltf's own decoding of URIs ('+' a space), kept for percent-encoded data
+// URIs; external file URIs are decoded by uri.h (RFC 3986) and handed to
+// tinygltf re-encoded, so that it reads the file checked here.
 std::string url_decode(const std::string& s) {
   auto hex = [](unsigned char ch) -> unsigned char {
     if (ch >= '0' && ch <= '9') return ch - '0';
@@ -254,10 +258,6 @@ std::string url_decode(const std::string& s) {
     }
   }
   return r;
-}
-std::string join_path(const std::string& dir, const std::string& file) {
-  if (dir.empty()) return file;
-  return dir.back() == '/' ? dir + file : dir + "/" + file;
 }
 
 // A buffer's data URI (RFC 2397): base64 or percent-encoded, media type
@@ -369,10 +369,19 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
         b = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
         continue;
       }
-      std::string path = join_path(in.base_dir, url_decode(u));
+      // One decoding (RFC 3986: '+' is a '+') for reading and for the depfile;
+      // confined to the asset's folder unless allowed (uri.h).
+      std::string path;
+      const std::string why = resolve_external_uri(in.base_dir, u, in.options.allow_outside_uris, path);
+      if (!why.empty()) refuse(name + ": " + why);
       uint64_t size = 0;
       if (!is_regular_file(path, &size)) refuse(name + ": cannot open '" + u + "' (looked for " + path + ")");
       if (size != length) refuse(name + ": '" + u + "' is " + str(size) + " bytes, but byteLength says " + str(length));
+      // tinygltf decodes with '+' as a space: hand it a URI that decodes to `path`.
+      std::string tiny_uri;
+      for (char ch : percent_decode(u)) tiny_uri += ch == '%' ? "%25" : ch == '+' ? "%2B" : std::string(1, ch);
+      b["uri"] = tiny_uri;
+      side.external.insert(path);
     }
   }
 
@@ -408,7 +417,10 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
   if (auto meshes = doc.find("meshes"); meshes != doc.end()) {
     for (size_t m = 0; m < meshes->size(); ++m) {
       Json& mesh = (*meshes)[m];
-      if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+      // Required by glTF 2.0 (5.23): a mesh without them used to bake empty.
+      if (!mesh.is_object()) refuse("mesh " + str(m) + " is not a JSON object");
+      if (!mesh.contains("primitives") || !mesh["primitives"].is_array())
+        refuse("mesh " + str(m) + ": \"primitives\" is missing or not an array");
       Json& prims = mesh["primitives"];
       for (size_t p = 0; p < prims.size(); ++p) {
         Json& prim = prims[p];
@@ -445,10 +457,22 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
 
 // ------------------------------------------------------------ tinygltf glue
 
-bool fs_file_exists(const std::string& path, void*) { return is_regular_file(path, nullptr); }
+// What tinygltf may read: the external files sanitize() checked, nothing else.
+struct FsState {
+  uint64_t limit;
+  const std::set<std::string>* allowed;
+};
+bool fs_file_exists(const std::string& path, void* user) {
+  return static_cast<const FsState*>(user)->allowed->count(path) && is_regular_file(path, nullptr);
+}
 std::string fs_expand(const std::string& path, void*) { return path; }
 bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  uint64_t limit = *static_cast<const uint64_t*>(user), size = 0;
+  const FsState& state = *static_cast<const FsState*>(user);
+  uint64_t limit = state.limit, size = 0;
+  if (!state.allowed->count(path)) {
+    if (err) *err = "not a file this importer checked";
+    return false;
+  }
   if (!is_regular_file(path, &size)) {
     if (err) *err = "not a regular file";
     return false;
@@ -478,11 +502,11 @@ std::string tinygltf_message(const std::string& err) {
 }
 
 void load_model(const Container& c, const Json& doc, const ImportInput& in, uint64_t max_bytes,
-                tinygltf::Model& model) {
+                const std::set<std::string>& external, tinygltf::Model& model) {
   std::string json = doc.dump();
   tinygltf::TinyGLTF loader;
-  uint64_t limit = max_bytes;
-  loader.SetFsCallbacks({&fs_file_exists, &fs_expand, &fs_read, &fs_write, &limit});
+  FsState fs_state{max_bytes, &external};
+  loader.SetFsCallbacks({&fs_file_exists, &fs_expand, &fs_read, &fs_write, &fs_state});
   loader.SetImageLoader(&skip_image, nullptr);
   std::string err, warn;
   bool ok;
@@ -1196,7 +1220,7 @@ void import(const ImportInput& in, Scene& out) {
   SideTable side;
   sanitize(doc, c, in, max_bytes, side);
   tinygltf::Model model;
-  load_model(c, doc, in, max_bytes, model);
+  load_model(c, doc, in, max_bytes, side.external, model);
   doc = Json();
   for (auto& [i, bytes] : side.data_uri)
     if (i < model.buffers.size()) model.buffers[i].data = std::move(bytes);

@@ -18,6 +18,7 @@
 // clockwise, like BSP files: the closed surfaces of OpenArena's players have
 // negative signed volume as stored); TriangleSource::mesh = surface index.
 // Every offset, count and index is checked against the bytes before use.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -80,6 +81,36 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
             " do not fit in the file (" + std::to_string(in.size) + " bytes)";
     return false;
   }
+  // What the surfaces claim, before anything is allocated: surfaces may share
+  // their triangle bytes, so a small file can claim millions (issue 15).
+  uint64_t claimed_triangles = 0, claimed_vertices = 0;
+  for (uint64_t at = uint64_t(surface_offset), s = 0; s < uint64_t(surfaces); ++s) {
+    if (!span_inside(int64_t(at), 1, kSurfaceHeaderSize, in.size)) break;  // refused below
+    const int32_t vertices = i32(in.data + at + 80), triangles = i32(in.data + at + 84);
+    const int32_t tri_offset = i32(in.data + at + 88), end_offset = i32(in.data + at + 104);
+    if (!span_inside(tri_offset, triangles, 12, in.size - at)) break;  // refused below, with its own message
+    claimed_triangles += uint64_t(std::max(triangles, 0));
+    claimed_vertices += uint64_t(std::max(vertices, 0));
+    if (end_offset < int32_t(kSurfaceHeaderSize)) break;
+    at += uint64_t(end_offset);
+  }
+  if (in.options.max_triangles && claimed_triangles > in.options.max_triangles) {
+    error = "the surfaces claim " + std::to_string(claimed_triangles) + " triangles, over the limit of " +
+            std::to_string(in.options.max_triangles);
+    return false;
+  }
+  const uint64_t claimed_bytes =
+      claimed_triangles * (3 * sizeof(uint32_t) + sizeof(TriangleSource)) + claimed_vertices * 3 * sizeof(float);
+  const uint64_t memory = in.options.max_bytes ? in.options.max_bytes : physical_memory_bytes();
+  if (memory && claimed_bytes > memory) {
+    error = "the surfaces claim " + std::to_string(claimed_triangles) + " triangles and " +
+            std::to_string(claimed_vertices) + " vertices (" + std::to_string(claimed_bytes) +
+            " bytes), over the limit of " + std::to_string(memory);
+    return false;
+  }
+  out.indices.reserve(out.indices.size() + 3 * size_t(claimed_triangles));
+  out.sources.reserve(out.sources.size() + size_t(claimed_triangles));
+
   uint64_t at = uint64_t(surface_offset);
   for (int32_t s = 0; s < surfaces; ++s) {
     const std::string name = "surface " + std::to_string(s);

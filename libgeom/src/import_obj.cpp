@@ -8,8 +8,10 @@
 // `g` start a new TriangleSource::mesh: a counter numbered densely from 0 in
 // the order groups first receive a face (faces before any `o`/`g` are a group). `l`
 // and `p` (lines, points) are skipped with one warning giving their count.
-// Every other statement (vt, vn, usemtl, mtllib, s, comments...) is ignored;
-// `#` starts a comment, also after a statement.
+// Every other OBJ statement (vt, vn, usemtl, mtllib, s, comments...) is
+// ignored; `#` starts a comment, also after a statement. A file with no face
+// and a line that is no OBJ statement ("hello", random bytes) is refused: it
+// is not a mesh (issue 15), where it used to bake empty.
 //
 // Text: LF, CRLF or CR-only line ends, a missing final newline, a UTF-8
 // byte-order mark, and `\` at the end of a line joining it with the next.
@@ -29,6 +31,20 @@
 
 namespace geom::detail {
 namespace {
+
+// The statements of the OBJ format (geometry, grouping, display, free-form),
+// and the few that common exporters add: a file with none of its triangles
+// and a line starting otherwise is not an OBJ file.
+bool is_obj_statement(std::string_view key) {
+  static const char* const kKeys[] = {
+      "v",    "vt",         "vn",        "vp",     "f",      "fo",     "l",   "p",    "o",     "g",        "s",
+      "mg",   "usemtl",     "mtllib",    "usemap", "maplib", "cstype", "deg", "bmat", "step",  "curv",     "curv2",
+      "surf", "parm",       "trim",      "hole",   "scrv",   "sp",     "end", "con",  "bevel", "c_interp", "d_interp",
+      "lod",  "shadow_obj", "trace_obj", "ctech",  "stech",  "call",   "csh", "res",  "vc"};
+  for (const char* k : kKeys)
+    if (key == k) return true;
+  return false;
+}
 
 struct LineReader {
   const char* p;
@@ -87,6 +103,9 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
   uint32_t mesh = 0, next_mesh = 0;
   bool new_group = true;
   uint64_t lines_points = 0, short_faces = 0;
+  const size_t base_indices = out.indices.size();
+  uint64_t unknown_line = 0;  // the first line whose statement is not OBJ
+  std::string unknown_key;
   // (line, index) of each index 0 and each index beyond the vertices read so
   // far; checked, in file order, once the vertex count is known.
   std::vector<std::pair<uint64_t, int64_t>> suspects;
@@ -168,6 +187,9 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
       new_group = true;
     } else if (key == "l" || key == "p") {
       ++lines_points;
+    } else if (!unknown_line && !is_obj_statement(key)) {
+      unknown_line = number;
+      unknown_key = quote_token(key);
     }
   }
   for (const auto& [line_number, idx] : suspects) {
@@ -180,6 +202,10 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
               std::to_string(vertex_count) + " vertices)";
       return false;
     }
+  }
+  if (out.indices.size() == base_indices && unknown_line) {  // no triangle, and text that is not OBJ
+    error = at_line(unknown_line) + unknown_key + " is not an OBJ statement, and the file has no face: not a mesh";
+    return false;
   }
   if (base + vertex_count > 0xffffffffu) {
     error = "more than 4294967295 vertices";

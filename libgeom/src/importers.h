@@ -34,6 +34,10 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error);
 // checked by instantiation i: 0 portable / 1 deprecated scheme on the position
 // corner table, 2 / 3 on an attribute corner table.
 std::string draco_guard_refusal();
+
+// This machine's physical memory in bytes (0 if unknown): no input or archive
+// member larger than it is read.
+uint64_t physical_memory_bytes();
 uint64_t draco_guard_checks(int which);
 
 }  // namespace geom::detail

@@ -12,35 +12,54 @@
 namespace geom {
 namespace {
 
+// The length of the valid UTF-8 sequence at s[i], 0 if none starts there.
+size_t utf8_length(const std::string& s, size_t i) {
+  const auto b = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = b(i);
+  size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (size_t k = 1; k < n; ++k)
+    if ((b(i + k) & 0xc0) != 0x80) return 0;
+  if ((n == 2 && c < 0xc2) || (n == 3 && c == 0xe0 && b(i + 1) < 0xa0) || (n == 3 && c == 0xed && b(i + 1) >= 0xa0) ||
+      (n == 4 && c == 0xf0 && b(i + 1) < 0x90) || (n == 4 && (c > 0xf4 || (c == 0xf4 && b(i + 1) >= 0x90))))
+    return 0;  // overlong, a surrogate, or over U+10FFFF
+  return n;
+}
+
+// JSON string contents for any bytes: valid UTF-8 kept, each other byte as
+// \udcXX (PEP 383's surrogateescape: lossless, and valid JSON text).
 std::string json_escape(const std::string& s) {
   std::string out;
   out.reserve(s.size() + 2);
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += char(c);
-        }
+  char buf[8];
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const size_t n = utf8_length(s, i);
+    if (n == 0) {
+      std::snprintf(buf, sizeof buf, "\\udc%02x", c);
+      out += buf;
+      ++i;
+      continue;
     }
+    if (n > 1) {
+      out.append(s, i, n);
+    } else if (c == '"') {
+      out += "\\\"";
+    } else if (c == '\\') {
+      out += "\\\\";
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c < 0x20 || c == 0x7f) {
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += char(c);
+    }
+    i += n;
   }
   return out;
 }
@@ -83,13 +102,15 @@ void analyze(const Scene& scene, float weld_tolerance, const TopologyOptions& op
                       scene.indices.size(), weld_tolerance);
   auto t1 = clock::now();
   if (timing) report.stages.push_back({"weld", std::chrono::duration<double>(t1 - t0).count(), peak_rss_bytes()});
+  TopologyOptions no_angles = options;
+  no_angles.dihedral_angles = false;  // the report shows no angle
   Topology t = build_topology(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
-                              scene.triangle_count(), options);
+                              scene.triangle_count(), no_angles);
   auto t2 = clock::now();
   if (timing) report.stages.push_back({"topology", std::chrono::duration<double>(t2 - t1).count(), peak_rss_bytes()});
   report.stats = t.stats;
-  report.halfedge =
-      summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(), scene.triangle_count());
+  report.halfedge = summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
+                                        scene.triangle_count(), t);
   if (timing)
     report.stages.push_back({"halfedge", std::chrono::duration<double>(clock::now() - t2).count(), peak_rss_bytes()});
   report.lights = scene.lights.size();

@@ -3,12 +3,15 @@
 // without ":member" expands to every .bsp map inside it.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 
 #include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/import.h"
 #include "geom/report.h"
 #include "geombake/command.h"
+#include "geombake/fault.h"
 #include "geombake/inputs.h"
 
 namespace geombake {
@@ -26,11 +29,15 @@ const char* kInfoHelp =
     "  --coplanar-degrees D  normals closer than D degrees make a coplanar edge (default 0.01)\n"
     "  --patch-level N     Bezier patch tessellation of Quake 3 maps (default 4)\n"
     "  --md3-frame N       MD3 frame to import (default 0)\n"
-    "  --max-triangles N   refuse inputs with more triangles\n";
+    "  --max-triangles N   refuse inputs with more triangles\n"
+    "  --max-memory N      refuse inputs that would need more than N bytes (suffix K, M or G)\n"
+    "  --timeout S         refuse inputs that take longer than S seconds (the others go on)\n"
+    "  --allow-outside-uris  read glTF buffers outside the asset's folder too\n";
 
 int run_info(const std::vector<std::string>& argv) {
-  cli::Args args(argv, {"--json", "-v", "--help", "-h"},
-                 {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles"});
+  cli::Args args(argv, {"--json", "-v", "--help", "-h", "--allow-outside-uris"},
+            {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles",
+             "--max-memory", "--timeout"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kInfoHelp, stdout);
     return 0;
@@ -42,12 +49,24 @@ int run_info(const std::vector<std::string>& argv) {
   geom::ImportOptions options;
   float tolerance = 0;
   geom::TopologyOptions topo;
+  double timeout = 0;
   if (!parse_number(args, "--weld-tolerance", tolerance) ||
       !parse_number(args, "--coplanar-degrees", topo.coplanar_degrees) ||
       !parse_number(args, "--patch-level", options.patch_level) ||
       !parse_number(args, "--md3-frame", options.md3_frame) ||
-      !parse_number(args, "--max-triangles", options.max_triangles))
+      !parse_number(args, "--max-triangles", options.max_triangles) || !parse_number(args, "--timeout", timeout))
     return 2;
+  uint64_t max_memory = 0;
+  if (args.has("--max-memory")) {
+    if (!parse_bytes(args.get("--max-memory"), max_memory) || max_memory == 0) {
+      std::fprintf(stderr, "Error: option --max-memory: '%s' is not a byte count (N, NK, NM or NG)\n",
+                   args.get("--max-memory").c_str());
+      return 2;
+    }
+    options.max_bytes = max_memory;
+  }
+  options.allow_outside_uris = args.has("--allow-outside-uris");
+  if (max_memory || timeout > 0) enable_budgets();
   std::vector<std::string> inputs;
   if (!expand_inputs(args.positional(), inputs)) return 2;
   if (inputs.empty()) {
@@ -57,34 +76,54 @@ int run_info(const std::vector<std::string>& argv) {
   const bool json = args.has("--json"), verbose = args.has("-v");
   std::string out;
   int failed = 0;
+  bool any_timed_out = false;
   for (const std::string& input : inputs) {
-    auto t0 = std::chrono::steady_clock::now();
-    geom::ImportResult imported = geom::import_file(input, options);
-    if (!imported.ok) {
-      std::fprintf(stderr, "Error: %s\n", imported.error.c_str());
+    // Each input a fault domain (fault.h), on a thread of its own under --timeout.
+    auto text = std::make_shared<std::string>();
+    auto warnings = std::make_shared<std::vector<std::string>>();
+    bool timed_out = false;
+    const std::string error = guarded_with_timeout(
+        input, max_memory, timeout,
+        [=] {
+          auto t0 = std::chrono::steady_clock::now();
+          geom::ImportResult imported = geom::import_file(input, options);
+          if (!imported.ok) return imported.error;
+          geom::Report report;
+          report.file = input;
+          if (verbose)
+            report.stages.push_back({"import",
+                                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                                     geom::peak_rss_bytes()});
+          geom::analyze(imported.scene, tolerance, topo, verbose, report);
+          *warnings = report.warnings;
+          *text = json ? geom::report_json(report) + "\n" : geom::report_text(report);
+          return std::string();
+        },
+        timed_out);
+    any_timed_out = any_timed_out || timed_out;
+    if (!error.empty()) {
+      std::fprintf(stderr, "Error: %s\n", error.c_str());
       ++failed;
       continue;
     }
-    geom::Report report;
-    report.file = input;
-    if (verbose)
-      report.stages.push_back({"import", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                               geom::peak_rss_bytes()});
-    geom::analyze(imported.scene, tolerance, topo, verbose, report);
     if (!json)
-      for (const std::string& w : report.warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
-    std::string text = json ? geom::report_json(report) + "\n" : geom::report_text(report);
+      for (const std::string& w : *warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
     if (args.has("-o"))
-      out += text;
+      out += *text;
     else
-      std::fputs(text.c_str(), stdout), std::fflush(stdout);
+      std::fputs(text->c_str(), stdout), std::fflush(stdout);
   }
   if (args.has("-o")) {
     std::string error;
     if (!geom::write_file_atomically(args.get("-o"), out, error)) {
       std::fprintf(stderr, "Error: %s\n", error.c_str());
-      return 1;
+      failed = 1;
     }
+  }
+  if (any_timed_out) {  // a thread may still be unwinding an abandoned input: end now
+    std::fflush(stdout);
+    std::fflush(stderr);
+    std::_Exit(failed ? 1 : 0);
   }
   return failed ? 1 : 0;
 }

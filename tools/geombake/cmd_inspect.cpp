@@ -9,6 +9,7 @@
 #include "cli/args.h"
 #include "geom/baked_reader.h"
 #include "geombake/command.h"
+#include "geombake/names.h"
 
 namespace geombake {
 namespace {
@@ -44,18 +45,17 @@ int run_inspect(const std::vector<std::string>& argv) {
   int failed = 0;
   for (const std::string& path : args.positional()) {
     geom::baked::File file;
-    if (!file.load(path)) {
+    if (!file.map(path)) {
       std::fprintf(stderr, "Error: %s\n", file.error().c_str());
       if (json)
-        std::printf("%s\n",
-                    nlohmann::ordered_json({{"file", path}, {"ok", false}, {"error", file.error()}}).dump().c_str());
+        std::printf("{\"file\":%s,\"ok\":false,\"error\":%s}\n", json_quote(path).c_str(),
+                    json_quote(file.error()).c_str());
       ++failed;
       continue;
     }
     const geom::baked::Reader& r = file.reader();
     if (json) {
       nlohmann::ordered_json j = {
-          {"file", path},
           {"ok", true},
           {"version", std::to_string(r.version_major()) + "." + std::to_string(r.version_minor())},
           {"bytes", r.file_size()},
@@ -72,7 +72,7 @@ int run_inspect(const std::vector<std::string>& argv) {
                                  {"offset", s.offset},
                                  {"bytes", s.size},
                                  {"crc32c", s.crc}});
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("{\"file\":%s,%s\n", json_quote(path).c_str(), j.dump().c_str() + 1);  // any name (names.h)
       continue;
     }
     std::printf("%s: geombake baked file %u.%u, %llu bytes, %zu sections (alignment %u), all checksums verified\n",

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "archive.h"
+#include "geombake/tree.h"
 
 namespace geombake {
 namespace {
@@ -12,15 +13,6 @@ namespace {
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s;
-}
-
-bool is_mesh_file(const std::string& name) {
-  const std::string n = lower(name);
-  for (const char* ext : {".gltf", ".glb", ".obj", ".ply", ".off", ".stl", ".bsp", ".md3"}) {
-    const std::string e = ext;
-    if (n.size() >= e.size() && n.compare(n.size() - e.size(), e.size(), e) == 0) return true;
-  }
-  return false;
 }
 
 }  // namespace
@@ -32,25 +24,21 @@ bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string
     if ((l.size() > 4 && (l.compare(l.size() - 4, 4, ".pk3") == 0 || l.compare(l.size() - 4, 4, ".zip") == 0))) {
       std::vector<std::string> names;
       std::string error;
-      if (!geom::detail::list_archive_members(a, ".bsp", names, error)) {
-        std::fprintf(stderr, "Error: %s: %s\n", a.c_str(), error.c_str());
-        return false;
-      }
-      if (names.empty()) {
-        std::fprintf(stderr, "Error: %s: no .bsp map inside the archive\n", a.c_str());
-        return false;
+      // An archive that cannot be listed, or holds no map, stays one input: the
+      // import says why (its `Error:`), and the other inputs go on.
+      if (!geom::detail::list_archive_members(a, ".bsp", names, error) || names.empty()) {
+        inputs.push_back(a);
+        continue;
       }
       for (const std::string& n : names) inputs.push_back(a + ":" + n);
       continue;
     }
     std::error_code ec;
-    if (fs::is_directory(a, ec)) {
-      std::vector<std::string> files;
-      for (const auto& entry : fs::directory_iterator(a, ec))
-        if (entry.is_regular_file(ec) && is_mesh_file(entry.path().filename().string()))
-          files.push_back(entry.path().string());
-      std::sort(files.begin(), files.end());
-      inputs.insert(inputs.end(), files.begin(), files.end());
+    if (fs::is_directory(a, ec)) {  // recursive, what is skipped said (geombake/tree.h)
+      std::vector<std::string> files, warnings;
+      walk_directory(a, files, warnings);
+      for (const std::string& w : warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+      for (const std::string& f : files) inputs.push_back((fs::path(a) / f).string());
       continue;
     }
     inputs.push_back(a);

@@ -12,8 +12,10 @@
 namespace geombake {
 
 // Expands each argument: ARCHIVE.pk3 (no ":member") becomes every .bsp inside
-// it, a directory every mesh file inside it (sorted, not recursive), anything
-// else stays as it is. Prints `Error:` and returns false for an unreadable archive.
+// it, a directory every mesh file under it (recursive, sorted), anything
+// else stays as it is (an archive that cannot be listed or holds no map too,
+// and a mesh-named entry of a directory that is not a regular file: their
+// import reports why). Returns true.
 bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string>& inputs);
 
 // Parses option `name` into `value` if present; prints `Error:` and returns false if malformed.

@@ -307,7 +307,7 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
     b.description = "blocks on a ground, directional light 3 degrees above it";
   } else if (name == "scan") {
     add_ground(b.scene, -1.5f, 1.5f, -1.5f, 1.5f);
-    if (!add_draco(b.scene, std::string(GEOMBENCH_SHARED_DATA) + "/draco/bunny_gltf.drc", error)) return false;
+    if (!add_draco(b.scene, std::string(GEOMBENCH_TEST_DATA) + "/draco/bunny_gltf.drc", error)) return false;
     b.light = point({0.9f, 1.8f, 0.7f});
     b.hard = true;
     b.description = "the Stanford bunny (Draco test data), point light";

@@ -8,7 +8,7 @@
 //   wide-depth a 400 m alley of pillars seen from one end, light perpendicular to the view (seed 002 fig. 1)
 //   duelling   the same alley, light facing the camera ("duelling frusta", seed 002)
 //   grazing    blocks on a ground, a directional light 3 degrees above the ground plane
-//   scan       the Stanford bunny (a real scan, /work/shared/data/draco/bunny_gltf.drc) on a ground
+//   scan       the Stanford bunny (a real scan, tests/data/draco/bunny_gltf.drc) on a ground
 //   quake3     OpenArena's oa_dm1 (Debian's openarena-081-maps), a point light inside the level
 #pragma once
 #include <string>

@@ -17,10 +17,11 @@
 namespace geom {
 
 struct ImportOptions {
-  int patch_level = 4;          // BSP Bezier patch tessellation (segments per side)
-  int md3_frame = 0;            // MD3 frame to import
-  uint64_t max_triangles = 0;   // 0 = no limit; larger inputs are refused
-  uint64_t max_bytes = 0;       // 0 = no limit on the memory one input may claim
+  int patch_level = 4;              // BSP Bezier patch tessellation (segments per side)
+  int md3_frame = 0;                // MD3 frame to import
+  uint64_t max_triangles = 0;       // 0 = no limit; larger inputs are refused
+  uint64_t max_bytes = 0;           // 0 = no limit on the memory one input may claim
+  bool allow_outside_uris = false;  // glTF: read external buffers outside the asset's folder too
 };
 
 struct ImportResult {
@@ -33,7 +34,7 @@ ImportResult import_file(const std::string& path, const ImportOptions& options =
 
 // Import from bytes already in memory; `name` decides the format (by extension)
 // and appears in messages. `base_dir` resolves relative URIs (glTF), may be empty.
-ImportResult import_memory(const std::string& name, const void* data, size_t size,
-                           const ImportOptions& options = {}, const std::string& base_dir = "");
+ImportResult import_memory(const std::string& name, const void* data, size_t size, const ImportOptions& options = {},
+                           const std::string& base_dir = "");
 
 }  // namespace geom

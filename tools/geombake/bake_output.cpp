@@ -1,0 +1,73 @@
+#include "geombake/bake_output.h"
+
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <new>
+
+#include "geom/atomic_file.h"
+
+namespace geombake {
+
+Written write_if_changed(const std::string& path, const std::vector<geom::BakedSection>& sections, bool force,
+                         bool make_parents, std::string& error, std::vector<uint32_t>* crcs) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (make_parents) {
+    const fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent, ec)) {
+      fs::create_directories(parent, ec);
+      if (!fs::is_directory(parent)) {
+        error = "cannot create the directory " + parent.string() + (ec ? ": " + ec.message() : "");
+        return Written::Failed;
+      }
+    }
+  }
+  // No output there yet (or --force): the writer's own path.
+  // A symlink there is replaced, never compared through (issue 15).
+  if (force || !fs::is_regular_file(fs::symlink_status(path, ec)))
+    return geom::write_baked(path, sections, error, crcs) ? Written::New : Written::Failed;
+  // An output there: lay the new one out and compare before writing.
+  std::vector<unsigned char> bytes;
+  try {
+    if (!geom::serialize_baked(sections, bytes, error)) return Written::Failed;
+  } catch (const std::bad_alloc&) {
+    error = "out of memory laying out the baked file";
+    return Written::Failed;
+  }
+  if (crcs) {  // the section table of the laid-out bytes holds them (geom/baked_reader.h)
+    crcs->assign(sections.size(), 0);
+    for (size_t i = 0; i < sections.size(); ++i)
+      (*crcs)[i] =
+          geom::baked::detail::load_u32(bytes.data() + geom::baked::kHeaderSize + i * geom::baked::kEntrySize + 40);
+  }
+  if (fs::file_size(path, ec) == bytes.size() && !ec) {
+    std::ifstream f(path, std::ios::binary);
+    std::vector<unsigned char> old(bytes.size());
+    if (f.read(reinterpret_cast<char*>(old.data()), std::streamsize(old.size())) && old == bytes)
+      return Written::Unchanged;
+  }
+  return geom::write_file_atomically(path, bytes.data(), bytes.size(), error) ? Written::New : Written::Failed;
+}
+
+int terminal_width(int fd) {
+  winsize ws{};
+  if (::ioctl(fd, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0) return ws.ws_col;
+  const char* columns = std::getenv("COLUMNS");
+  const int c = columns ? std::atoi(columns) : 0;
+  return c > 0 ? c : 80;
+}
+
+std::string fit_line(const std::string& text, size_t width, size_t keep) {
+  if (text.size() <= width) return text;
+  if (width <= keep + 3) return text.substr(0, width);
+  size_t from = text.size() - (width - keep - 3);
+  while (from < text.size() && (static_cast<unsigned char>(text[from]) & 0xC0) == 0x80)
+    ++from;  // not inside a UTF-8 character
+  return text.substr(0, keep) + "..." + text.substr(from);
+}
+
+}  // namespace geombake
