@@ -425,6 +425,46 @@ TEST(Hostile, MillionGltfNodes) {
   EXPECT_LT(r.wall_seconds, 10 * cli::kSanitizerFactor);
 }
 
+// Work abandoned by --timeout really stops (its next allocation throws, it
+// unwinds) instead of running on beside the inputs still baking: with enough
+// quick inputs after it to outlast it, the run costs the quick inputs plus a
+// fraction of the slow one, not both whole; nothing crashes while it unwinds.
+TEST(Hostile, TimedOutWorkIsStopped) {
+  const fs::path d = scratch("abandon");
+  const int n = cli::kSanitizerFactor > 1 ? 50000 : 200000;
+  std::string nodes = "{\"mesh\":0}", roots = "0";
+  for (int i = 1; i < n; ++i) {
+    nodes += ",{\"mesh\":0,\"translation\":[" + std::to_string(i) + ",0,0]}";
+    roots += "," + std::to_string(i);
+  }
+  write(d / "slow.gltf", triangle_gltf("", ",\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[" + roots + "]}]"));
+  write(d / "q0.obj", grid_obj(100));
+  const cli::Run slow =
+      cli::run({"bake", (d / "slow.gltf").string(), "-o", (d / "slow.gbake").string()}, d / "l1", 120);
+  ASSERT_EQ(slow.exit_code, 0) << cli::describe(slow);
+  const cli::Run one = cli::run({"bake", (d / "q0.obj").string(), "-o", (d / "q0.gbake").string()}, d / "l2", 120);
+  ASSERT_EQ(one.exit_code, 0) << cli::describe(one);
+  // Enough quick inputs to take twice the slow one's time.
+  const int quick = std::clamp(int(2 * slow.cpu_seconds / std::max(one.cpu_seconds, 1e-3)), 4, 150);
+  std::vector<std::string> args = {"bake", "-j", "1", "-o", (d / "q1").string()};
+  for (int i = 0; i < quick; ++i) {
+    const fs::path q = d / ("q" + std::to_string(i) + ".obj");
+    if (i) fs::copy_file(d / "q0.obj", q);
+    args.push_back(q.string());
+  }
+  const cli::Run alone = cli::run(args, d / "l3", 300);
+  ASSERT_EQ(alone.exit_code, 0) << cli::describe(alone);
+  args[4] = (d / "q2").string();  // a fresh folder: every output written both times
+  args.insert(args.begin() + 5, (d / "slow.gltf").string());
+  args.insert(args.end(), {"--timeout", std::to_string(0.05 * slow.wall_seconds)});
+  const cli::Run both = cli::run(args, d / "l4", 300);
+  EXPECT_EQ(both.exit_code, 1) << cli::describe(both);
+  EXPECT_TRUE(has(both.err, "slow.gltf: timed out after")) << both.err;
+  EXPECT_EQ(cli::listing(d / "q2").size(), size_t(quick)) << both.err.substr(0, 2000);
+  EXPECT_LT(both.cpu_seconds, alone.cpu_seconds + 0.4 * slow.cpu_seconds)
+      << "slow alone " << slow.cpu_seconds << " s, " << quick << " quick alone " << alone.cpu_seconds << " s";
+}
+
 // --max-memory bounds what is really allocated, not an estimate from the
 // triangle count: an OBJ of 2M vertices and one face is refused while it is
 // imported; an MD3 whose surfaces share their triangles to claim millions is
