@@ -348,6 +348,16 @@ TEST(Hostile, TraversalUrisAreConfined) {
   EXPECT_EQ(r.exit_code, 0) << cli::describe(r);
   r = cli::run({"info", (asset / "up.gltf").string()}, d, 30);
   EXPECT_EQ(r.exit_code, 1) << cli::describe(r);
+  // A glTF inside an archive has no folder: its external files are never looked up (in the working directory).
+  const std::string gltf = triangle_gltf("secret.bin");
+  int err = 0;
+  zip_t* z = zip_open((d / "a.pk3").c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  ASSERT_NE(z, nullptr);
+  ASSERT_GE(zip_file_add(z, "m/t.gltf", zip_source_buffer(z, gltf.data(), gltf.size(), 0), 0), 0);
+  ASSERT_EQ(zip_close(z), 0);
+  r = cli::run({"info", (d / "a.pk3").string() + ":m/t.gltf"}, d, 30);
+  EXPECT_EQ(r.exit_code, 1) << cli::describe(r);
+  EXPECT_TRUE(has(r.err, "'secret.bin' is an external file, but the asset has no folder")) << r.err;
 }
 
 // Any file name: --json stays valid UTF-8 with the name kept losslessly
