@@ -104,9 +104,9 @@ void expect_same(const std::vector<BakedSection>& written, const Reader& r) {
     EXPECT_EQ(s.item, w.item);
     EXPECT_EQ(s.count, w.count);
     EXPECT_EQ(std::string(s.name), w.name);
-    ASSERT_EQ(s.size, w.bytes.size());
+    ASSERT_EQ(s.size, w.size());
     EXPECT_EQ(s.offset % r.alignment(), 0u);
-    EXPECT_TRUE(w.bytes.empty() || std::memcmp(s.data, w.bytes.data(), w.bytes.size()) == 0);
+    EXPECT_TRUE(w.size() == 0 || std::memcmp(s.data, w.data(), w.size()) == 0);
   }
 }
 
@@ -628,7 +628,7 @@ TEST(Bake, SeamedTetrahedron) {
   EXPECT_EQ(r.sections[2].count, 12u);  // remap
   // Face 0 (0 2 1) lies in z = 0 and faces -z.
   std::vector<float> plane(4);
-  std::memcpy(plane.data(), r.sections[3].bytes.data(), 16);
+  std::memcpy(plane.data(), r.sections[3].data(), 16);
   EXPECT_EQ(plane, (std::vector<float>{0, 0, -1, 0}));
   EXPECT_EQ(r.sections[11].count, 24u);  // 6 adjacency indices per triangle
 }

@@ -1,14 +1,76 @@
 // Triangles-with-adjacency index buffer (see geom/adjacency.h), for the
 // geometry-shader silhouette test of seed 001_0225cc27c0669b01.txt, section
-// 3.2.1. Directed half-edges are bucketed by their start vertex (a counting
-// sort, in triangle order), so "the first triangle traversing b -> a" is the
-// first match in b's bucket: linear time, no hashing, deterministic.
+// 3.2.1.
+//
+// From the edge table (geom/topology.h): each edge lists its faces in triangle
+// order with the direction each runs it, so one pass over an edge's faces
+// finds the first two faces of each direction, and every face of the edge
+// gets its neighbour from those four: linear however many faces share an edge
+// or a vertex, deterministic, and the same table the other stages use.
+//
+// Without a table: directed half-edges bucketed by their start vertex (a
+// counting sort), each bucket sorted by (end vertex, triangle), so "the first
+// triangle traversing b -> a" is a binary search in b's bucket: O(n log n)
+// whatever the valences.
 #include "geom/adjacency.h"
 
+#include <algorithm>
 #include <new>
 #include <vector>
 
+#include "work_count.h"
+
 namespace geom {
+namespace {
+
+inline bool collapsed(const uint32_t* v) { return v[0] == v[1] || v[1] == v[2] || v[2] == v[0]; }
+
+// The vertex of triangle `v` that is neither a nor b.
+inline uint32_t third_of(const uint32_t* v, uint32_t a, uint32_t b) {
+  return v[0] != a && v[0] != b ? v[0] : v[1] != a && v[1] != b ? v[1] : v[2];
+}
+
+// Every triangle's own corners, and its own opposite vertex for each edge (the
+// answer for boundary edges and collapsed triangles).
+void write_own(uint32_t* out, const uint32_t* indices, size_t triangle_count) {
+  for (size_t t = 0; t < triangle_count; ++t) {
+    const uint32_t* v = indices + 3 * t;
+    uint32_t* o = out + 6 * t;
+    o[0] = v[0], o[1] = v[2], o[2] = v[1], o[3] = v[0], o[4] = v[2], o[5] = v[1];
+  }
+}
+
+}  // namespace
+
+bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, const Topology& topology) {
+  write_own(out, indices, triangle_count);
+  const uint32_t kNone = Topology::kNone;
+  for (uint32_t id = 0; id < topology.edges.size(); ++id) {
+    const Edge& e = topology.edges[id];
+    if (e.face_count < 2) continue;
+    detail::count_work(2 * uint64_t(e.face_count));
+    const uint32_t* faces = topology.edge_faces.data() + e.first;
+    uint32_t first[2][2] = {{kNone, kNone}, {kNone, kNone}};  // [direction][0: first, 1: second]
+    for (uint32_t i = 0; i < e.face_count; ++i) {
+      uint32_t* slot = first[faces[i] & 1];
+      if (slot[0] == kNone)
+        slot[0] = faces[i] >> 1;
+      else if (slot[1] == kNone)
+        slot[1] = faces[i] >> 1;
+    }
+    for (uint32_t i = 0; i < e.face_count; ++i) {
+      const uint32_t t = faces[i] >> 1, d = faces[i] & 1;
+      // The first triangle the other way; else the first other one this way.
+      uint32_t n = first[d ^ 1][0];
+      if (n == kNone) n = first[d][0] != t ? first[d][0] : first[d][1];
+      if (n == kNone) continue;
+      const uint32_t* fe = topology.face_edges.data() + 3 * size_t(t);
+      const int k = fe[0] == id ? 0 : fe[1] == id ? 1 : 2;
+      out[6 * size_t(t) + 2 * k + 1] = third_of(indices + 3 * size_t(n), e.v0, e.v1);
+    }
+  }
+  return true;
+}
 
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, size_t vertex_count) {
   struct Half {
@@ -16,7 +78,6 @@ bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_cou
   };
   try {
     std::vector<uint32_t> start(vertex_count + 1, 0);
-    auto collapsed = [&](const uint32_t* v) { return v[0] == v[1] || v[1] == v[2] || v[2] == v[0]; };
     for (size_t t = 0; t < triangle_count; ++t) {
       const uint32_t* v = indices + 3 * t;
       if (collapsed(v)) continue;
@@ -36,29 +97,29 @@ bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_cou
         half[fill[v[2]]++] = {v[0], v[1], uint32_t(t)};
       }
     }
+    auto by_end = [](const Half& x, const Half& y) { return x.to != y.to ? x.to < y.to : x.tri < y.tri; };
+    uint64_t compared = 0;
+    auto counted = [&compared, &by_end](const Half& x, const Half& y) { return ++compared, by_end(x, y); };
+    for (size_t i = 0; i < vertex_count; ++i)
+      if (start[i + 1] - start[i] > 1) std::sort(half.begin() + start[i], half.begin() + start[i + 1], counted);
+    detail::count_work(compared + half.size());
+    // The first half-edge from `from` to `to` in triangle order, other than triangle `not_tri`.
+    auto find = [&](uint32_t from, uint32_t to, uint32_t not_tri) -> const Half* {
+      const Half* b = half.data() + start[from];
+      const Half* e = half.data() + start[from + 1];
+      const Half* h = std::lower_bound(b, e, Half{to, 0, 0}, by_end);
+      if (h != e && h->to == to && h->tri == not_tri) ++h;
+      return h != e && h->to == to ? h : nullptr;
+    };
+    write_own(out, indices, triangle_count);
     for (size_t t = 0; t < triangle_count; ++t) {
       const uint32_t* v = indices + 3 * t;
-      uint32_t* o = out + 6 * t;
+      if (collapsed(v)) continue;
       for (int k = 0; k < 3; ++k) {
-        const uint32_t a = v[k], b = v[(k + 1) % 3], own = v[(k + 2) % 3];
-        o[2 * k] = a;
-        uint32_t n = own;
-        if (!collapsed(v)) {
-          bool found = false;
-          for (uint32_t i = start[b], e = start[b + 1]; i < e; ++i)
-            if (half[i].to == a) {
-              n = half[i].third;
-              found = true;
-              break;
-            }
-          if (!found)
-            for (uint32_t i = start[a], e = start[a + 1]; i < e; ++i)
-              if (half[i].to == b && half[i].tri != t) {
-                n = half[i].third;
-                break;
-              }
-        }
-        o[2 * k + 1] = n;
+        const uint32_t a = v[k], b = v[(k + 1) % 3];
+        const Half* h = find(b, a, uint32_t(-1));
+        if (!h) h = find(a, b, uint32_t(t));
+        if (h) out[6 * t + 2 * k + 1] = h->third;
       }
     }
   } catch (const std::bad_alloc&) {

@@ -9,6 +9,7 @@
 #include <sys/file.h>
 #include <sys/random.h>
 #include <sys/stat.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -73,17 +74,35 @@ std::string file_kind(mode_t m) {
   return "not a regular file";
 }
 
-bool write_all(int fd, const void* data, size_t size) {
-  const char* p = static_cast<const char*>(data);
-  while (size > 0) {
-    ssize_t n = ::write(fd, p, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      if (n == 0) errno = EIO;
+// Writes the parts in order, gathered in batches of at most kBatch iovecs (no
+// copy into one buffer); a short write resumes inside the part where it stopped.
+bool write_parts(int fd, const FilePart* parts, size_t count) {
+  constexpr size_t kBatch = 1024;
+  iovec iov[kBatch];
+  size_t next = 0, skip = 0;  // the first part not yet fully written, and its bytes already written
+  while (next < count) {
+    size_t n = 0;
+    for (size_t i = next; i < count && n < kBatch; ++i) {
+      const size_t off = i == next ? skip : 0;
+      if (parts[i].size == off) continue;
+      iov[n].iov_base = const_cast<char*>(static_cast<const char*>(parts[i].data) + off);
+      iov[n].iov_len = parts[i].size - off;
+      ++n;
+    }
+    if (n == 0) break;
+    ssize_t w = ::writev(fd, iov, int(n));
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      if (w == 0) errno = EIO;
       return false;
     }
-    p += n;
-    size -= size_t(n);
+    size_t done = size_t(w);
+    while (next < count && done >= parts[next].size - skip) {
+      done -= parts[next].size - skip;
+      skip = 0;
+      ++next;
+    }
+    skip += done;
   }
   return true;
 }
@@ -130,6 +149,11 @@ int create_temp(const std::string& dir, std::string& name) {
 }  // namespace
 
 bool write_file_atomically(const std::string& path, const void* data, size_t size, std::string& error) {
+  const FilePart part{data, size};
+  return write_file_atomically(path, &part, 1, error);
+}
+
+bool write_file_atomically(const std::string& path, const FilePart* parts, size_t count, std::string& error) {
   if (path.empty()) {
     error = "the output path is empty";
     return false;
@@ -167,7 +191,7 @@ bool write_file_atomically(const std::string& path, const void* data, size_t siz
     error = what + ": " + std::strerror(errno);
     return false;
   };
-  if (!write_all(t.fd, data, size)) return fail("cannot write '" + path + "'");
+  if (!write_parts(t.fd, parts, count)) return fail("cannot write '" + path + "'");
   if (::fsync(t.fd) != 0) return fail("cannot flush '" + path + "'");
   if (t.name.empty()) {  // give the unnamed file a random name, then rename it
     const std::string proc = "/proc/self/fd/" + std::to_string(t.fd);

@@ -3,9 +3,15 @@
 // algorithm per file); this file only chooses, converts and lays out.
 #include "geom/bake.h"
 
+#include <climits>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <new>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
@@ -61,9 +67,27 @@ std::vector<float> world_face_planes(const FacePlanes& fp) {
   return out;
 }
 
+// A section that views `values` (no copy) inside the stage result `keep` holds.
+template <class T>
+BakedSection view_section(SectionType type, Format format, uint32_t stride, const char* name,
+                          const std::vector<T>& values, std::shared_ptr<const void> keep, uint32_t item = 0) {
+  BakedSection s;
+  s.type = type;
+  s.format = format;
+  s.stride = stride;
+  s.item = item;
+  s.name = name;
+  s.view = reinterpret_cast<const unsigned char*>(values.data());
+  s.view_size = values.size() * sizeof(T);
+  s.count = s.view_size / stride;
+  if (s.view) s.keep = std::move(keep);
+  return s;
+}
+
 template <class Record>
-BakedSection record_section(SectionType type, const char* name, const std::vector<Record>& records, uint32_t item = 0) {
-  return make_baked_section(type, Format::Record, uint32_t(sizeof(Record)), name, records, item);
+BakedSection record_section(SectionType type, const char* name, const std::vector<Record>& records,
+                            std::shared_ptr<const void> keep, uint32_t item = 0) {
+  return view_section(type, Format::Record, uint32_t(sizeof(Record)), name, records, std::move(keep), item);
 }
 
 std::string esm_json(const EsmStats& s) {
@@ -91,6 +115,16 @@ bool finite4(const double v[4]) {
 
 }  // namespace
 
+bool keep_memory_across_bakes() {
+#if defined(__GLIBC__)
+  // No mmap'd chunks (they are unmapped on free; glibc caps the mmap threshold
+  // at 32 MiB, below a large mesh's buffers), no trimming of the heap's top.
+  return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
+#else
+  return false;
+#endif
+}
+
 BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
   BakeResult r;
   try {
@@ -110,15 +144,19 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       }
 
     const size_t tc = scene.triangle_count();
-    WeldResult w = weld(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                        scene.indices.size(), options.weld_tolerance);
+    const auto kept_weld =
+        std::make_shared<WeldResult>(weld(positions_of(scene.positions.data(), scene.vertex_count()),
+                                          scene.indices.data(), scene.indices.size(), options.weld_tolerance));
+    const WeldResult& w = *kept_weld;
     const PositionSpan welded = positions_of(w.positions.data(), w.vertex_count());
-    Topology topo = build_topology(welded, w.indices.data(), tc, options.topology);
+    TopologyOptions topology_options = options.topology;
+    topology_options.dihedral_angles = false;  // no section holds an angle
+    Topology topo = build_topology(welded, w.indices.data(), tc, topology_options);
 
     // The report, field by field as geom/report.h's analyze() fills it.
     r.report.file = name;
     r.report.stats = topo.stats;
-    r.report.halfedge = summarize_halfedges(welded, w.indices.data(), tc);
+    r.report.halfedge = summarize_halfedges(welded, w.indices.data(), tc, topo);
     r.report.lights = scene.lights.size();
     r.report.source_counts = scene.source_counts;
     r.report.warnings = scene.warnings;
@@ -131,10 +169,11 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
 
     auto& s = r.sections;
     if (options.positions)
-      s.push_back(make_baked_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions));
-    if (options.indices) s.push_back(make_baked_section(SectionType::Indices, Format::U32, 4, "indices", w.indices));
+      s.push_back(view_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions, kept_weld));
+    if (options.indices)
+      s.push_back(view_section(SectionType::Indices, Format::U32, 4, "indices", w.indices, kept_weld));
     if (options.weld_remap)
-      s.push_back(make_baked_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap));
+      s.push_back(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept_weld));
     if (options.face_planes)
       s.push_back(make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes", world_face_planes(fp)));
     if (options.topology_report) {
@@ -154,30 +193,30 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       js += "\"frame\":[" + json_number(origin[0]) + "," + json_number(origin[1]) + "," + json_number(origin[2]) + "],";
     }
     if (options.esm) {
-      EsmQuads esm = build_esm_quads(welded, w.indices.data(), tc, topo, fp, options.esm_options);
-      s.push_back(record_section(SectionType::EsmQuads, "esm_quads", esm.quads));
-      s.push_back(make_baked_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", esm.planes));
+      const auto kept =
+          std::make_shared<EsmQuads>(build_esm_quads(welded, w.indices.data(), tc, topo, fp, options.esm_options));
+      const EsmQuads& esm = *kept;
+      s.push_back(record_section(SectionType::EsmQuads, "esm_quads", esm.quads, kept));
+      s.push_back(view_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", esm.planes, kept));
       js += "\"esm\":" + esm_json(esm.stats) + ",";
       r.esm = esm.stats;
     }
-    ShadowVolume volume;
+    const auto kept_volume = std::make_shared<ShadowVolume>();
+    ShadowVolume& volume = *kept_volume;
     if (need_volume) volume = build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
     if (options.volume) {
-      s.push_back(record_section(SectionType::VolumeSides, "volume_sides", volume.sides));
-      s.push_back(record_section(SectionType::VolumeCaps, "volume_caps", volume.caps));
-      s.push_back(make_baked_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", volume.planes));
+      s.push_back(record_section(SectionType::VolumeSides, "volume_sides", volume.sides, kept_volume));
+      s.push_back(record_section(SectionType::VolumeCaps, "volume_caps", volume.caps, kept_volume));
+      s.push_back(
+          view_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", volume.planes, kept_volume));
       js += "\"volume\":" + volume_json(volume.stats) + ",";
       r.volume = volume.stats;
     }
     if (options.adjacency) {
       std::vector<uint32_t> adj(adjacency_index_count(tc));
-      if (!build_adjacency(adj.data(), w.indices.data(), tc, w.vertex_count())) {
-        r = BakeResult();
-        r.error = name + ": out of memory building the adjacency indices";
-        return r;
-      }
-      s.push_back(make_baked_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", adj));
+      build_adjacency(adj.data(), w.indices.data(), tc, topo);
       js += "\"adjacency\":{\"indices\":" + json_uint(adj.size()) + "},";
+      s.push_back(make_baked_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", std::move(adj)));
     }
     if (!lights.empty()) {
       std::vector<double> table;
@@ -188,11 +227,12 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
     for (size_t i = 0; i < lights.size(); ++i) {
       float local[4];
       to_local_light(fp.origin, lights[i].light, local);
-      ShadowVolume lv = build_light_volume(volume, local);
+      const auto kept = std::make_shared<ShadowVolume>(build_light_volume(volume, local));
+      const ShadowVolume& lv = *kept;
       const uint32_t item = uint32_t(i);
-      s.push_back(record_section(SectionType::LightSides, "light_sides", lv.sides, item));
-      s.push_back(record_section(SectionType::LightCaps, "light_caps", lv.caps, item));
-      s.push_back(make_baked_section(SectionType::LightPlanes, Format::F32x4, 16, "light_planes", lv.planes, item));
+      s.push_back(record_section(SectionType::LightSides, "light_sides", lv.sides, kept, item));
+      s.push_back(record_section(SectionType::LightCaps, "light_caps", lv.caps, kept, item));
+      s.push_back(view_section(SectionType::LightPlanes, Format::F32x4, 16, "light_planes", lv.planes, kept, item));
       js += std::string(i ? "," : "") + "{\"name\":" + json_string(lights[i].name) + ",\"light\":[" +
             json_number(lights[i].light[0]) + "," + json_number(lights[i].light[1]) + "," +
             json_number(lights[i].light[2]) + "," + json_number(lights[i].light[3]) +

@@ -5,6 +5,7 @@
 #include <new>
 
 #include "geom/atomic_file.h"
+#include "geom/crc32c.h"
 
 namespace geom {
 namespace {
@@ -28,12 +29,18 @@ bool host_is_little_endian() {
   return b == 1;
 }
 
-}  // namespace
+// The header and table of the container (the checksums of every section in
+// it), and where each section goes. False with `error` on a bad section.
+struct Layout {
+  std::vector<unsigned char> head;  // header + table
+  std::vector<uint64_t> offsets;
+  std::vector<uint32_t> crcs;
+  uint64_t end = 0;
+  uint32_t alignment = 0;
+};
 
-bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsigned char>& out, std::string& error,
-                     uint32_t alignment) {
+bool lay_out(const std::vector<BakedSection>& sections, uint32_t alignment, Layout& l, std::string& error) {
   using namespace baked;
-  out.clear();
   if (!host_is_little_endian()) {
     error = "the baked writer needs a little-endian host";
     return false;
@@ -47,7 +54,9 @@ bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsi
     return false;
   }
   const uint64_t table_end = kHeaderSize + uint64_t(sections.size()) * kEntrySize;
-  std::vector<uint64_t> offsets(sections.size());
+  l.alignment = alignment;
+  l.offsets.assign(sections.size(), 0);
+  l.crcs.assign(sections.size(), 0);
   uint64_t end = table_end;
   for (size_t i = 0; i < sections.size(); ++i) {
     const BakedSection& s = sections[i];
@@ -66,16 +75,17 @@ bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsi
       error = what + ": stride " + std::to_string(s.stride) + " does not fit format " + format_name(s.format);
       return false;
     }
-    if (s.count > UINT64_MAX / s.stride || s.count * s.stride != s.bytes.size()) {
-      error = what + ": " + std::to_string(s.bytes.size()) + " bytes are not count " + std::to_string(s.count) +
+    if (s.count > UINT64_MAX / s.stride || s.count * s.stride != s.size()) {
+      error = what + ": " + std::to_string(s.size()) + " bytes are not count " + std::to_string(s.count) +
               " x stride " + std::to_string(s.stride);
       return false;
     }
-    offsets[i] = align_up(end, alignment);
-    end = offsets[i] + s.bytes.size();
+    l.offsets[i] = align_up(end, alignment);
+    end = l.offsets[i] + s.size();
   }
-  out.assign(size_t(end), 0);  // every padding byte zero
-  unsigned char* h = out.data();
+  l.end = end;
+  l.head.assign(size_t(table_end), 0);
+  unsigned char* h = l.head.data();
   std::memcpy(h, kMagic, 8);
   store_u32(h + 8, kEndianTag);
   store_u16(h + 12, kVersionMajor);
@@ -88,32 +98,59 @@ bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsi
   for (size_t i = 0; i < sections.size(); ++i) {
     const BakedSection& s = sections[i];
     unsigned char* e = h + kHeaderSize + i * kEntrySize;
+    l.crcs[i] = geom::crc32c(s.data(), s.size());
     store_u32(e, uint32_t(s.type));
     store_u32(e + 4, uint32_t(s.format));
     store_u32(e + 8, s.stride);
     store_u32(e + 12, s.item);
     store_u64(e + 16, s.count);
-    store_u64(e + 24, offsets[i]);
-    store_u64(e + 32, s.bytes.size());
-    store_u32(e + 40, crc32c(s.bytes.data(), s.bytes.size()));
+    store_u64(e + 24, l.offsets[i]);
+    store_u64(e + 32, s.size());
+    store_u32(e + 40, l.crcs[i]);
     std::memcpy(e + 48, s.name.data(), s.name.size());
-    if (!s.bytes.empty()) std::memcpy(h + offsets[i], s.bytes.data(), s.bytes.size());
   }
-  uint32_t crc = crc32c(h, kHeaderCrcOffset);
-  crc = crc32c(h + kHeaderSize, size_t(table_end - kHeaderSize), crc);
+  uint32_t crc = geom::crc32c(h, kHeaderCrcOffset);
+  crc = geom::crc32c(h + kHeaderSize, size_t(table_end - kHeaderSize), crc);
   store_u32(h + kHeaderCrcOffset, crc);
   return true;
 }
 
-bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error) {
-  std::vector<unsigned char> bytes;
+}  // namespace
+
+bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsigned char>& out, std::string& error,
+                     uint32_t alignment) {
+  out.clear();
+  Layout l;
+  if (!lay_out(sections, alignment, l, error)) return false;
+  out.assign(size_t(l.end), 0);  // every padding byte zero
+  std::memcpy(out.data(), l.head.data(), l.head.size());
+  for (size_t i = 0; i < sections.size(); ++i)
+    if (sections[i].size()) std::memcpy(out.data() + l.offsets[i], sections[i].data(), sections[i].size());
+  return true;
+}
+
+bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error,
+                 std::vector<uint32_t>* crcs) {
+  static const unsigned char kZeros[baked::kMaxAlignment] = {};
+  Layout l;
+  std::vector<FilePart> parts;
   try {
-    if (!serialize_baked(sections, bytes, error)) return false;
+    if (!lay_out(sections, baked::kDefaultAlignment, l, error)) return false;
+    parts.reserve(2 * sections.size() + 1);
+    parts.push_back({l.head.data(), l.head.size()});
+    uint64_t at = l.head.size();
+    for (size_t i = 0; i < sections.size(); ++i) {
+      if (l.offsets[i] > at) parts.push_back({kZeros, size_t(l.offsets[i] - at)});
+      parts.push_back({sections[i].data(), sections[i].size()});
+      at = l.offsets[i] + sections[i].size();
+    }
   } catch (const std::bad_alloc&) {
     error = "out of memory laying out the baked file";
     return false;
   }
-  return write_file_atomically(path, bytes.data(), bytes.size(), error);
+  if (!write_file_atomically(path, parts.data(), parts.size(), error)) return false;
+  if (crcs) *crcs = std::move(l.crcs);
+  return true;
 }
 
 }  // namespace geom

@@ -87,6 +87,18 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   };
   const double bevel_dot = -std::cos(options.bevel_below_degrees * M_PI / 180.0);
 
+  // Room for the most an edge can emit (a pair: two quads and a bevel plane;
+  // otherwise two quads and a plane per face), so the buffers never grow
+  // (a grown vector copies itself; the unused tail is never paged in).
+  {
+    size_t quads = 0, planes = 4 * fp.plane_count();
+    for (const Edge& e : topology.edges) {
+      quads += e.face_count == 2 ? 2 : 2 * size_t(e.face_count);
+      planes += 4 * (e.face_count == 2 ? 1 : size_t(e.face_count));
+    }
+    r.quads.reserve(quads);
+    r.planes.reserve(planes);
+  }
   std::vector<uint32_t> live;
   for (const Edge& e : topology.edges) {
     live.clear();

@@ -63,6 +63,7 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
   const double dist_tol = options.coplanar_distance * r.diagonal;
   const bool have_edges = topology.face_edges.size() == 3 * triangle_count;
   std::vector<uint32_t> queue;
+  r.planes.reserve(4 * (triangle_count - r.degenerate_faces));  // at most a plane per face: never grown
   for (size_t seed = 0; seed < triangle_count; ++seed) {
     const double* n = &r.normals[3 * seed];
     if (r.face_plane[seed] != FacePlanes::kNone || (n[0] == 0 && n[1] == 0 && n[2] == 0)) continue;

@@ -102,13 +102,15 @@ void analyze(const Scene& scene, float weld_tolerance, const TopologyOptions& op
                       scene.indices.size(), weld_tolerance);
   auto t1 = clock::now();
   if (timing) report.stages.push_back({"weld", std::chrono::duration<double>(t1 - t0).count(), peak_rss_bytes()});
+  TopologyOptions no_angles = options;
+  no_angles.dihedral_angles = false;  // the report shows no angle
   Topology t = build_topology(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
-                              scene.triangle_count(), options);
+                              scene.triangle_count(), no_angles);
   auto t2 = clock::now();
   if (timing) report.stages.push_back({"topology", std::chrono::duration<double>(t2 - t1).count(), peak_rss_bytes()});
   report.stats = t.stats;
-  report.halfedge =
-      summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(), scene.triangle_count());
+  report.halfedge = summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
+                                        scene.triangle_count(), t);
   if (timing)
     report.stages.push_back({"halfedge", std::chrono::duration<double>(clock::now() - t2).count(), peak_rss_bytes()});
   report.lights = scene.lights.size();

@@ -82,8 +82,14 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     ++(double_sided[f] ? st.double_sided_faces : st.one_sided_faces);
   }
 
-  // Side records, in edge order.
-  sv.sides.reserve(topology.edges.size());
+  // Side records, in edge order; room for the most (a pair: two records, else
+  // one per face), so the buffers never grow.
+  {
+    size_t most = 0;
+    for (const Edge& e : topology.edges) most += e.face_count == 2 ? 2 : e.face_count;
+    sv.sides.reserve(most);
+    sv.side_component.reserve(most);
+  }
   for (const Edge& e : topology.edges) {
     gather(e);
     if (live.empty()) continue;
@@ -126,6 +132,7 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
 
   // Caps: every non-degenerate face.
   sv.caps.reserve(triangle_count - st.degenerate_faces);
+  sv.cap_component.reserve(triangle_count - st.degenerate_faces);
   for (size_t f = 0; f < triangle_count; ++f) {
     if (!has_plane(uint32_t(f))) continue;
     SvCap c;

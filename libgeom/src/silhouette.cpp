@@ -33,14 +33,14 @@ SilhouetteBuffers bake_silhouettes(PositionSpan positions, const uint32_t* indic
   b.weld = weld(positions, indices, 3 * triangle_count, options.weld_tolerance);
   const PositionSpan welded = positions_of(b.weld.positions.data(), b.weld.vertex_count());
   const uint32_t* wi = b.weld.indices.data();
-  b.topology = build_topology(welded, wi, triangle_count);
+  b.topology = build_topology(welded, wi, triangle_count, options.topology);
   b.planes = compute_face_planes(welded, wi, triangle_count, b.topology, options.planes);
   if (options.esm_quads) b.esm = build_esm_quads(welded, wi, triangle_count, b.topology, b.planes, options.esm);
   if (options.shadow_volume || !lights.empty())
     b.volume = build_shadow_volume(welded, wi, triangle_count, b.topology, b.planes, options.volume);
   if (options.adjacency) {
     b.adjacency.resize(adjacency_index_count(triangle_count));
-    build_adjacency(b.adjacency.data(), wi, triangle_count, b.weld.vertex_count());
+    build_adjacency(b.adjacency.data(), wi, triangle_count, b.topology);
   }
   for (LightVolume& l : lights) {
     float local[4];

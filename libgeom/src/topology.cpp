@@ -11,13 +11,16 @@
 #include <cmath>
 #include <numeric>
 
+#include "work_count.h"
+
 namespace geom {
 namespace {
 
 struct HalfEdge {
   uint32_t other;  // the larger vertex
   uint32_t face;
-  uint8_t k;  // which edge of the face: (i_k, i_{k+1})
+  uint32_t third;  // the face's vertex off the edge
+  uint8_t k;       // which edge of the face: (i_k, i_{k+1})
   uint8_t reversed;
 };
 
@@ -69,21 +72,30 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       for (int k = 0; k < 3; ++k) {
         uint32_t a = v[k], b = v[(k + 1) % 3];
         uint32_t lo = std::min(a, b), hi = std::max(a, b);
-        half[fill[lo]++] = {hi, uint32_t(f), uint8_t(k), uint8_t(a > b)};
+        half[fill[lo]++] = {hi, uint32_t(f), v[(k + 2) % 3], uint8_t(k), uint8_t(a > b)};
       }
     }
   }
 
-  // Group each bucket into edges.
+  // Group each bucket into edges. Duplicate faces on the way: a face with the
+  // same vertex set as an earlier one shares each of its edges with it, and
+  // has the same third vertex there; so within an edge's faces (in triangle
+  // order) a face whose first edge this is is a duplicate when an earlier face
+  // of the edge had its third vertex (`seen_at`: the last edge that saw a
+  // vertex as a third vertex). Linear however many faces share the edge.
   t.edges.reserve(half.size() / 2 + 16);
   t.edge_faces.reserve(half.size());
+  std::vector<uint32_t> seen_at(vn, Topology::kNone);
   for (size_t v0 = 0; v0 < vn; ++v0) {
     HalfEdge* b = half.data() + start[v0];
     HalfEdge* e = half.data() + start[v0 + 1];
     if (b == e) continue;
-    std::sort(b, e, [](const HalfEdge& x, const HalfEdge& y) {
-      return x.other != y.other ? x.other < y.other : x.face != y.face ? x.face < y.face : x.k < y.k;
+    uint64_t compared = 0;
+    std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
+      ++compared;
+      return x.other != y.other ? x.other < y.other : x.face < y.face;  // a face meets (v0, other) once
     });
+    detail::count_work(compared + uint64_t(e - b));
     for (HalfEdge* run = b; run != e;) {
       HalfEdge* end = run;
       while (end != e && end->other == run->other) ++end;
@@ -93,6 +105,13 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       for (HalfEdge* h = run; h != end; ++h) {
         t.edge_faces.push_back(h->face << 1 | h->reversed);
         t.face_edges[3 * size_t(h->face) + h->k] = id;
+        if (edge.face_count < 2) continue;
+        const uint32_t third = h->third;
+        if (h->k == 0 && seen_at[third] == id) {
+          t.face_flags[h->face] |= kFaceDuplicate;
+          ++s.duplicate_triangles;
+        }
+        seen_at[third] = id;
       }
       if (edge.face_count == 2)
         edge.kind = run[0].reversed != run[1].reversed ? EdgeKind::Manifold : EdgeKind::Inconsistent;
@@ -142,10 +161,11 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     if ((t.face_flags[f0] | t.face_flags[f1]) & kFaceZeroArea) continue;
     const Vec n0 = normal[f0], n1 = normal[f1];
     const double c = std::max(-1.0, std::min(1.0, dot(n0, n1)));
-    const double theta = std::acos(c) * 180.0 / M_PI;  // angle between the normals
+    // The angle between the normals, only where asked for.
+    const double theta = options.dihedral_angles ? std::acos(c) * 180.0 / M_PI : 0.0;
     if (c >= coplanar_cos) {
       e.shape = EdgeShape::Coplanar;
-      e.dihedral_degrees = 180.0f;
+      e.dihedral_degrees = options.dihedral_angles ? 180.0f : 0.0f;
       ++s.coplanar_edges;
       continue;
     }
@@ -155,33 +175,12 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     const double side = dot(n0, sub(positions[far], positions[e.v0]));
     if (side < 0.0) {
       e.shape = EdgeShape::Convex;
-      e.dihedral_degrees = float(180.0 - theta);
+      e.dihedral_degrees = options.dihedral_angles ? float(180.0 - theta) : 0.0f;
       ++s.convex_edges;
     } else {
       e.shape = EdgeShape::Concave;
-      e.dihedral_degrees = float(180.0 + theta);
+      e.dihedral_degrees = options.dihedral_angles ? float(180.0 + theta) : 0.0f;
       ++s.concave_edges;
-    }
-  }
-
-  // Duplicate faces: same vertex set as an earlier face sharing its first edge.
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (t.face_flags[f] & kFaceCollapsed) continue;
-    const uint32_t* v = indices + 3 * f;
-    uint32_t a[3] = {v[0], v[1], v[2]};
-    std::sort(a, a + 3);
-    const Edge& e = t.edges[t.face_edges[3 * f]];
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      uint32_t g = t.edge_faces[e.first + i] >> 1;
-      if (g >= f) break;
-      const uint32_t* w = indices + 3 * size_t(g);
-      uint32_t b[3] = {w[0], w[1], w[2]};
-      std::sort(b, b + 3);
-      if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) {
-        t.face_flags[f] |= kFaceDuplicate;
-        ++s.duplicate_triangles;
-        break;
-      }
     }
   }
 

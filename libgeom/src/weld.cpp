@@ -34,15 +34,14 @@ void weld_exact(PositionSpan p, WeldResult& r) {
   size_t capacity = 16;
   while (capacity < n * 2) capacity *= 2;
   std::vector<uint32_t> table(capacity, 0xffffffffu);  // welded vertex index per slot
-  std::vector<uint32_t> keys;                          // 3 keys per welded vertex
-  keys.reserve(n * 3 / 2);
-  r.positions.reserve(n * 3 / 2);
+  // At most n welded vertices: one allocation, never grown (its untouched tail
+  // is never paged in). A slot's key is read back from the welded position.
+  r.positions.reserve(3 * n);
   for (size_t i = 0; i < n; ++i) {
     const Float3& v = p[i];
     if (std::isnan(v.x) || std::isnan(v.y) || std::isnan(v.z)) {  // NaN never merges
       r.remap[i] = uint32_t(r.positions.size() / 3);
-      r.positions.insert(r.positions.end(), {v.x, v.y, v.z});
-      keys.insert(keys.end(), {0xffffffffu, 0xffffffffu, 0xffffffffu});
+      r.positions.push_back(v.x), r.positions.push_back(v.y), r.positions.push_back(v.z);
       continue;
     }
     const uint32_t kx = float_key(v.x), ky = float_key(v.y), kz = float_key(v.z);
@@ -53,12 +52,12 @@ void weld_exact(PositionSpan p, WeldResult& r) {
       if (w == 0xffffffffu) {
         w = uint32_t(r.positions.size() / 3);
         table[slot] = w;
-        r.positions.insert(r.positions.end(), {v.x, v.y, v.z});
-        keys.insert(keys.end(), {kx, ky, kz});
+        r.positions.push_back(v.x), r.positions.push_back(v.y), r.positions.push_back(v.z);
         r.remap[i] = w;
         break;
       }
-      if (keys[3 * w] == kx && keys[3 * w + 1] == ky && keys[3 * w + 2] == kz) {
+      const float* q = r.positions.data() + 3 * size_t(w);
+      if (float_key(q[0]) == kx && float_key(q[1]) == ky && float_key(q[2]) == kz) {
         r.remap[i] = w;
         break;
       }

@@ -13,7 +13,7 @@
 namespace geombake {
 
 Written write_if_changed(const std::string& path, const std::vector<geom::BakedSection>& sections, bool force,
-                         bool make_parents, std::string& error) {
+                         bool make_parents, std::string& error, std::vector<uint32_t>* crcs) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (make_parents) {
@@ -29,7 +29,7 @@ Written write_if_changed(const std::string& path, const std::vector<geom::BakedS
   // No output there yet (or --force): the writer's own path.
   // A symlink there is replaced, never compared through (issue 15).
   if (force || !fs::is_regular_file(fs::symlink_status(path, ec)))
-    return geom::write_baked(path, sections, error) ? Written::New : Written::Failed;
+    return geom::write_baked(path, sections, error, crcs) ? Written::New : Written::Failed;
   // An output there: lay the new one out and compare before writing.
   std::vector<unsigned char> bytes;
   try {
@@ -37,6 +37,12 @@ Written write_if_changed(const std::string& path, const std::vector<geom::BakedS
   } catch (const std::bad_alloc&) {
     error = "out of memory laying out the baked file";
     return Written::Failed;
+  }
+  if (crcs) {  // the section table of the laid-out bytes holds them (geom/baked_reader.h)
+    crcs->assign(sections.size(), 0);
+    for (size_t i = 0; i < sections.size(); ++i)
+      (*crcs)[i] =
+          geom::baked::detail::load_u32(bytes.data() + geom::baked::kHeaderSize + i * geom::baked::kEntrySize + 40);
   }
   if (fs::file_size(path, ec) == bytes.size() && !ec) {
     std::ifstream f(path, std::ios::binary);

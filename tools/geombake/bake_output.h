@@ -15,8 +15,10 @@ enum class Written { New, Unchanged, Failed };
 // untouched (its mtime kept, so downstream build steps need not rerun).
 // `make_parents`: create the missing directories above `path` first (an output
 // mirrored under -o DIR). Failed: `error` says why ("what is wrong").
+// `crcs`, when given, receives each section's CRC-32C as the writer computed
+// it (New or Unchanged), for the report: never computed a second time.
 Written write_if_changed(const std::string& path, const std::vector<geom::BakedSection>& sections, bool force,
-                         bool make_parents, std::string& error);
+                         bool make_parents, std::string& error, std::vector<uint32_t>* crcs = nullptr);
 
 // The width of the terminal on `fd` (TIOCGWINSZ), else $COLUMNS, else 80.
 int terminal_width(int fd);

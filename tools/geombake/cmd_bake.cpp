@@ -193,9 +193,9 @@ struct SectionInfo {
   uint32_t crc;
 };
 
-SectionInfo info_of(const geom::BakedSection& s) {
-  return {s.name, s.type,  s.format,       s.stride,
-          s.item, s.count, s.bytes.size(), geom::baked::crc32c(s.bytes.data(), s.bytes.size())};
+// `crc`: the section's CRC-32C as the writer computed it (never a second time).
+SectionInfo info_of(const geom::BakedSection& s, uint32_t crc) {
+  return {s.name, s.type, s.format, s.stride, s.item, s.count, s.size(), crc};
 }
 
 nlohmann::ordered_json section_json(const SectionInfo& s) {
@@ -289,12 +289,14 @@ Outcome bake_unguarded(Job& job, const geom::BakeOptions& options, const geom::I
   if (timeout > 0 && double(now_ns() - job.started_ns.load()) * 1e-9 > timeout) return o;  // the caller times it out
   if (!job.state.compare_exchange_strong(expected, kWriting)) return o;                    // given up on: write nothing
   std::string error;
-  o.written = write_if_changed(job.output, o.result.sections, write.force, write.make_parents, error);
+  std::vector<uint32_t> crcs;
+  o.written = write_if_changed(job.output, o.result.sections, write.force, write.make_parents, error, &crcs);
   if (o.written == Written::Failed) {
     o.result.ok = false;
     o.error = job.input + ": cannot write " + job.output + ": " + error;
   }
-  for (const auto& sec : o.result.sections) o.sections.push_back(info_of(sec));
+  crcs.resize(o.result.sections.size(), 0);
+  for (size_t i = 0; i < o.result.sections.size(); ++i) o.sections.push_back(info_of(o.result.sections[i], crcs[i]));
   std::vector<geom::BakedSection>().swap(o.result.sections);
   return o;
 }
@@ -394,6 +396,7 @@ int run_bake(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "Error: %s\n%s", args.error().c_str(), kBakeHelp);
     return 2;
   }
+  geom::keep_memory_across_bakes();  // each input reuses the pages of the ones before
   geom::ImportOptions import_options;
   geom::BakeOptions options;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());

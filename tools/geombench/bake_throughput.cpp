@@ -8,11 +8,12 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 
+#include "geom/bake.h"
 #include "geom/report.h"
-#include "geom/silhouette.h"
 #include "geom/weld.h"
 #include "scenes.h"
 
@@ -29,11 +30,7 @@ struct Input {
 // One run of `method`; returns a value that depends on the output (kept alive).
 size_t run(const std::string& method, const Input& in) {
   const geom::Scene& m = in.raw;
-  if (method == "bake") {
-    auto b = geom::bake_silhouettes(geom::positions_of(m.positions.data(), m.vertex_count()), m.indices.data(),
-                                    m.triangle_count(), {});
-    return b.adjacency.size() + b.esm.quads.size();
-  }
+  if (method == "bake") return geom::bake_scene(m, "mesh").sections.size();
   if (method == "meshopt") {
     std::vector<unsigned int> adj(m.indices.size() * 2);
     meshopt_generateAdjacencyIndexBuffer(adj.data(), m.indices.data(), m.indices.size(), m.positions.data(),
@@ -93,12 +90,23 @@ double peak_extra(const std::string& method, const Input& in) {
 
 }  // namespace
 
-std::vector<BakeRow> bake_throughput(const std::vector<int>& sphere_n, int repetitions) {
+std::vector<BakeRow> bake_throughput(const std::vector<int>& sphere_n, int repetitions, int fan_triangles) {
+  geom::keep_memory_across_bakes();
   std::vector<BakeRow> rows;
-  for (int n : sphere_n) {
+  std::vector<int> meshes = sphere_n;
+  if (fan_triangles > 0) meshes.push_back(-fan_triangles);
+  for (int n : meshes) {
     Input in;
     const float centre[3] = {0, 0, 0};
-    add_sphere(in.raw, n, 1, centre);
+    if (n > 0) {
+      add_sphere(in.raw, n, 1, centre);
+    } else {  // a fan: one vertex in every triangle
+      in.raw.positions = {0, 0, 0};
+      for (int i = 0; i <= -n; ++i)
+        in.raw.positions.insert(in.raw.positions.end(),
+                                {float(std::cos(6.2 * i / -n)), float(std::sin(6.2 * i / -n)), 0.0f});
+      for (int i = 0; i < -n; ++i) in.raw.indices.insert(in.raw.indices.end(), {0u, uint32_t(i + 1), uint32_t(i + 2)});
+    }
     in.welded = geom::weld(geom::positions_of(in.raw.positions.data(), in.raw.vertex_count()), in.raw.indices.data(),
                            in.raw.indices.size());
     for (const char* method : {"bake", "meshopt", "openmesh"}) {

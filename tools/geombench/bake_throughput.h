@@ -1,13 +1,19 @@
 // tools/geombench/bake_throughput.h: the toolkit's silhouette bake against the
-// peer libraries on the same triangles (MISSION.md part 9, issue 6 item 4):
-//   bake      geom::bake_silhouettes from the raw (seamed) triangles: weld,
-//             topology, face planes, ESM quads, generic shadow volume, adjacency
+// peer libraries on the same triangles (MISSION.md part 9, issue 6 item 4,
+// issue 14):
+//   bake      geom::bake_scene from the raw (seamed) triangles: everything a
+//             .gbake holds (weld, topology and its report, face planes, ESM
+//             quads, generic shadow volume, adjacency, the sections), no I/O
 //   meshopt   meshopt_generateAdjacencyIndexBuffer on the same raw triangles
 //             (it remaps by position itself): adjacency only
 //   openmesh  an OpenMesh TriMesh (half-edges) built from the welded triangles
 //             (the weld not timed: OpenMesh needs shared vertices)
-// on the rippled UV sphere of scenes.h. Time: the best of `repetitions` runs,
-// one core. Peak memory: each operation once in a forked child, the rise of
+// on the rippled UV sphere of scenes.h at each `sphere_n` (70: 9,940 triangles,
+// homer-sized; 158: 50,244, armadillo-sized; 633: 802,620, dragon-sized) and,
+// when `fan_triangles` > 0, a fan of that many triangles around one vertex
+// (the high-valence case). Time: the best of `repetitions` runs, one core,
+// freed memory kept across runs (geom::keep_memory_across_bakes, as
+// `geombake bake` does), for every method alike. Peak memory: each operation once in a forked child, the rise of
 // the child's peak resident set (VmHWM, reset through /proc/self/clear_refs)
 // above its resident set once the input is built and freed heap memory is
 // handed back (malloc_trim); 0 where Linux refuses.
@@ -26,6 +32,6 @@ struct BakeRow {
   double peak_bytes = 0;  // extra peak memory of one run
 };
 
-std::vector<BakeRow> bake_throughput(const std::vector<int>& sphere_n, int repetitions);
+std::vector<BakeRow> bake_throughput(const std::vector<int>& sphere_n, int repetitions, int fan_triangles = 0);
 
 }  // namespace geombench

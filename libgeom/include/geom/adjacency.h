@@ -33,12 +33,20 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "geom/topology.h"
+
 namespace geom {
 
 // Writes 6 * triangle_count indices to `out`. `indices` hold 3 per triangle, each
-// < vertex_count (a caller bug otherwise). Memory: about 16 bytes per triangle
-// of scratch. Returns false only if a temporary allocation fails.
+// < vertex_count (a caller bug otherwise). Memory: about 12 bytes per triangle
+// of scratch; O(n log n) time whatever the valences. Returns false only if a
+// temporary allocation fails.
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, size_t vertex_count);
+
+// The same buffer from the mesh's edge table (geom/topology.h, built from these
+// indices): no scratch memory, linear in the triangles whatever the valences.
+// Always true.
+bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, const Topology& topology);
 
 inline size_t adjacency_index_count(size_t triangle_count) { return 6 * triangle_count; }
 

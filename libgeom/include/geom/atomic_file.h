@@ -29,6 +29,14 @@ constexpr const char* kTempPrefix = ".geomtmp-";
 // is left alone.
 bool write_file_atomically(const std::string& path, const void* data, size_t size, std::string& error);
 
+// The same, for a file that is the concatenation of `count` parts (written with
+// one gathering writev per up to 1024 parts, no copy into one buffer).
+struct FilePart {
+  const void* data;
+  size_t size;
+};
+bool write_file_atomically(const std::string& path, const FilePart* parts, size_t count, std::string& error);
+
 inline bool write_file_atomically(const std::string& path, const std::string& text, std::string& error) {
   return write_file_atomically(path, text.data(), text.size(), error);
 }

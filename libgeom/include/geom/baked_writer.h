@@ -12,6 +12,7 @@
 // (native on every host the writer supports; a big-endian host is refused).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,14 +20,23 @@
 
 namespace geom {
 
+// The payload is either `bytes` (owned) or, when `view` is set, the `view_size`
+// bytes at `view`, inside a buffer that `keep` holds alive (a stage's own
+// output, moved in: no copy). data() and size() give whichever it is.
 struct BakedSection {
   baked::SectionType type = baked::SectionType::Positions;
   baked::Format format = baked::Format::Bytes;
   uint32_t stride = 1;  // bytes per element
   uint32_t item = 0;    // e.g. the light index of a per-light volume
-  uint64_t count = 0;   // elements; bytes.size() must be count * stride
+  uint64_t count = 0;   // elements; size() must be count * stride
   std::string name;     // up to 15 printable ASCII characters
   std::vector<unsigned char> bytes;
+  const unsigned char* view = nullptr;
+  size_t view_size = 0;
+  std::shared_ptr<const void> keep;
+
+  const unsigned char* data() const { return view ? view : bytes.data(); }
+  size_t size() const { return view ? view_size : bytes.size(); }
 };
 
 // A section of a typed array (T is float, uint32_t or a record of them):
@@ -46,13 +56,35 @@ BakedSection make_baked_section(baked::SectionType type, baked::Format format, u
   return s;
 }
 
+// The same without a copy: the section views `values`, moved into it.
+template <class T>
+BakedSection make_baked_section(baked::SectionType type, baked::Format format, uint32_t stride, std::string name,
+                                std::vector<T>&& values, uint32_t item = 0) {
+  BakedSection s;
+  s.type = type;
+  s.format = format;
+  s.stride = stride;
+  s.item = item;
+  s.name = std::move(name);
+  auto kept = std::make_shared<const std::vector<T>>(std::move(values));
+  s.view = reinterpret_cast<const unsigned char*>(kept->data());
+  s.view_size = kept->size() * sizeof(T);
+  s.keep = std::move(kept);
+  s.count = stride ? s.view_size / stride : 0;
+  return s;
+}
+
 // Lays the sections out in the given order (`alignment`: a power of two in
 // 16..4096). False with `error` if a section is inconsistent (bad name, size
 // not count x stride, stride not that of the format) or there are too many.
 bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsigned char>& out, std::string& error,
                      uint32_t alignment = baked::kDefaultAlignment);
 
-// serialize_baked, then the atomic write. error: "what is wrong".
-bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error);
+// The layout of serialize_baked written straight from the sections' buffers
+// (one gathering write, geom/atomic_file.h; no serialized copy), atomically.
+// Each section's CRC-32C is computed once (geom/crc32c.h); when `crcs` is
+// given it receives them, in section order, for a report. error: "what is wrong".
+bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error,
+                 std::vector<uint32_t>* crcs = nullptr);
 
 }  // namespace geom

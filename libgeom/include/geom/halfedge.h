@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "geom/span.h"
+#include "geom/topology.h"
 
 namespace geom {
 
@@ -22,5 +23,20 @@ struct HalfedgeSummary {
 // `positions`: welded vertices; `indices`: 3 per triangle, welded. Faces are
 // offered in order, so which faces are refused is deterministic.
 HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count);
+
+// The same summary read from the mesh's edge table (geom/topology.h, built from
+// the same welded indices) where it tells the answer: when no edge is
+// non-manifold or inconsistent and every vertex's faces form one fan,
+// OpenMesh takes every face (refused = 0) and the holes are the cycles of
+// boundary edges, found here in linear time. Otherwise OpenMesh is run (the
+// function above), whose answer depends on the order faces are offered.
+// Linear in the triangles whatever the valences on the first path; OpenMesh's
+// add_face costs the valence of a face's vertices.
+HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                                    const Topology& topology);
+
+// Whether the edge table alone gives the summary (the first path above).
+bool halfedges_from_edge_table(const uint32_t* indices, size_t triangle_count, size_t vertex_count,
+                               const Topology& topology);
 
 }  // namespace geom

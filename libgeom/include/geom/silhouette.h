@@ -27,6 +27,9 @@ namespace geom {
 
 struct SilhouetteOptions {
   float weld_tolerance = 0;  // geom/weld.h
+  // geom/topology.h; no silhouette buffer reads a dihedral angle, so the bake
+  // leaves them out (dihedral_angles = true fills SilhouetteBuffers::topology's).
+  TopologyOptions topology = {0.01, false};
   FacePlaneOptions planes;
   EsmOptions esm;
   ShadowVolumeOptions volume;

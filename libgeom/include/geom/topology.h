@@ -37,12 +37,12 @@ enum FaceFlag : uint8_t {
 };
 
 struct Edge {
-  uint32_t v0, v1;         // welded vertices, v0 < v1
-  uint32_t first;          // first entry in Topology::edge_faces
-  uint32_t face_count;     // number of entries
+  uint32_t v0, v1;      // welded vertices, v0 < v1
+  uint32_t first;       // first entry in Topology::edge_faces
+  uint32_t face_count;  // number of entries
   EdgeKind kind;
   EdgeShape shape;
-  float dihedral_degrees;  // manifold edges between non-degenerate faces; else 0
+  float dihedral_degrees;  // manifold edges between non-degenerate faces; else 0 (and when not asked for)
 };
 
 struct TopologyStats {
@@ -53,25 +53,29 @@ struct TopologyStats {
   uint64_t coplanar_edges = 0, convex_edges = 0, concave_edges = 0;
   uint64_t collapsed_triangles = 0, zero_area_triangles = 0, duplicate_triangles = 0;
   uint64_t components = 0, closed_components = 0;
-  uint32_t max_edge_faces = 0;  // the most triangles sharing one edge
+  uint32_t max_edge_faces = 0;       // the most triangles sharing one edge
   int64_t euler_characteristic = 0;  // vertices - edges + non-collapsed triangles
   bool closed = true;                // no boundary and no non-manifold edge
 };
 
 struct Topology {
   static constexpr uint32_t kNone = 0xffffffffu;
-  std::vector<Edge> edges;            // sorted by (v0, v1)
+  std::vector<Edge> edges;  // sorted by (v0, v1)
   // Per edge, its faces: (triangle << 1) | reversed, where reversed = 1 when the
   // triangle traverses the edge v1 -> v0. In triangle order.
   std::vector<uint32_t> edge_faces;
-  std::vector<uint32_t> face_edges;   // 3 per triangle: edges (i0,i1), (i1,i2), (i2,i0); kNone if collapsed
-  std::vector<uint8_t> face_flags;    // FaceFlag bits per triangle
+  std::vector<uint32_t> face_edges;      // 3 per triangle: edges (i0,i1), (i1,i2), (i2,i0); kNone if collapsed
+  std::vector<uint8_t> face_flags;       // FaceFlag bits per triangle
   std::vector<uint32_t> face_component;  // component id per triangle; kNone if collapsed
   TopologyStats stats;
 };
 
 struct TopologyOptions {
   double coplanar_degrees = 0.01;  // normals closer than this: the edge is coplanar
+  // Fill Edge::dihedral_degrees (an acos per manifold edge). Off, every edge's
+  // is 0 and nothing else changes: the bake and the report turn it off, as no
+  // stage of theirs reads an angle.
+  bool dihedral_angles = true;
 };
 
 // `positions`: the welded vertices; `indices`: 3 per triangle, welded.
