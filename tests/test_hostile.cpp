@@ -259,6 +259,30 @@ TEST(Hostile, PlantedSymlinksAndStaleTempFiles) {
   EXPECT_TRUE(fs::is_symlink(out / ".geomtmp-00000000deadbeef"));                   // not provably ours
 }
 
+// Writers of one output at once (separate processes, as in separate PID
+// namespaces, where a pid-named temp file used to be shared): each publishes a
+// complete file, and no temporary file is left.
+TEST(Hostile, ConcurrentWritersNeverShareATempFile) {
+  const fs::path d = scratch("concurrent"), out = d / "out";
+  fs::create_directories(out);
+  write(d / "grid.obj", grid_obj(120));
+  const std::vector<std::string> args = {"bake", (d / "grid.obj").string(), "-o", (out / "grid.gbake").string()};
+  for (int round = 0; round < 4; ++round) {
+    std::vector<pid_t> pids;
+    for (int k = 0; k < 3; ++k)
+      pids.push_back(
+          spawn(args, round % 2 ? std::vector<std::string>{"GEOM_NO_O_TMPFILE=1"} : std::vector<std::string>{}));
+    for (pid_t pid : pids) {
+      int status = 0;
+      ::waitpid(pid, &status, 0);
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "round " << round;
+    }
+    EXPECT_EQ(leftovers(out), std::vector<std::string>());
+    const cli::Run check = cli::run({"inspect", (out / "grid.gbake").string()}, d / "log", 30);
+    EXPECT_EQ(check.exit_code, 0) << cli::describe(check);
+  }
+}
+
 // kill -9 and SIGINT mid-write, with named temporary files (the fallback of
 // systems without O_TMPFILE, forced): after SIGINT no temporary file is left;
 // after kill -9 the next clean run sweeps what was left. Either way the
@@ -332,7 +356,7 @@ TEST(Hostile, NonUtf8AndSpecialNames) {
   const std::string odd = "m\xff\xfe.off", special = "a b#c$d.off", newline = "new\nline.off";
   for (const std::string& n : {odd, special, newline}) write(d / n, kCube);
   cli::Run r = cli::run({"bake", "--json", (d / odd).string(), (d / special).string(), (d / newline).string(), "-o",
-                         (d / "out").string(), "--depfile", (d / "deps.d").string()},
+                         (d / "out").string(), "--depfile", (d / "deps.d").string(), "-r", (d / "run.json").string()},
                         d, 30);
   EXPECT_EQ(r.exit_code, 1) << cli::describe(r);  // the newline name cannot be in a depfile
   EXPECT_TRUE(has(r.err, "a newline in its name")) << r.err;
@@ -340,6 +364,7 @@ TEST(Hostile, NonUtf8AndSpecialNames) {
   EXPECT_TRUE(has(r.out, "\"input\":\"" + (d / "new").string() + "\\nline.off\"")) << r.out;
   for (unsigned char c : r.out) EXPECT_LT(c, 0x80);  // here all ASCII: valid UTF-8
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 3);
+  EXPECT_TRUE(has(cli::slurp(d / "run.json"), "\\udcff\\udcfe.off")) << cli::slurp(d / "run.json");
   const std::string deps = cli::slurp(d / "deps.d");
   EXPECT_TRUE(has(deps, "a\\ b\\#c$$d.off")) << deps;
   r = cli::run({"info", "--json", (d / odd).string()}, d, 30);

@@ -87,7 +87,8 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
   for (uint64_t at = uint64_t(surface_offset), s = 0; s < uint64_t(surfaces); ++s) {
     if (!span_inside(int64_t(at), 1, kSurfaceHeaderSize, in.size)) break;  // refused below
     const int32_t vertices = i32(in.data + at + 80), triangles = i32(in.data + at + 84);
-    const int32_t end_offset = i32(in.data + at + 104);
+    const int32_t tri_offset = i32(in.data + at + 88), end_offset = i32(in.data + at + 104);
+    if (!span_inside(tri_offset, triangles, 12, in.size - at)) break;  // refused below, with its own message
     claimed_triangles += uint64_t(std::max(triangles, 0));
     claimed_vertices += uint64_t(std::max(vertices, 0));
     if (end_offset < int32_t(kSurfaceHeaderSize)) break;
