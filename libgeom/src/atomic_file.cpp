@@ -19,6 +19,8 @@
 #include <cstring>
 #include <random>
 
+#include "file_kind.h"
+
 namespace geom {
 namespace {
 
@@ -63,15 +65,6 @@ std::string random_name(const std::string& dir) {
   char hex[17];
   for (int i = 0; i < 8; ++i) std::snprintf(hex + 2 * i, 3, "%02x", b[i]);
   return dir + "/" + kTempPrefix + hex;
-}
-
-std::string file_kind(mode_t m) {
-  if (S_ISDIR(m)) return "a directory";
-  if (S_ISFIFO(m)) return "a FIFO";
-  if (S_ISCHR(m)) return "a character device";
-  if (S_ISBLK(m)) return "a block device";
-  if (S_ISSOCK(m)) return "a socket";
-  return "not a regular file";
 }
 
 // Writes the parts in order, gathered in batches of at most kBatch iovecs (no
@@ -164,7 +157,7 @@ bool write_file_atomically(const std::string& path, const FilePart* parts, size_
   }
   struct stat st;
   if (::lstat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode)) {
-    error = "'" + path + "' is " + file_kind(st.st_mode) + ", not a regular file: not replaced";
+    error = "'" + path + "' is " + detail::file_kind(st.st_mode) + ", not a regular file: not replaced";
     return false;
   }
   const size_t slash = path.find_last_of('/');

@@ -17,6 +17,7 @@
 #include <iterator>
 
 #include "archive.h"
+#include "file_kind.h"
 #include "importers.h"
 
 namespace geom {
@@ -52,15 +53,6 @@ std::string directory_of(const std::string& path) {
   return slash == std::string::npos ? std::string("./") : path.substr(0, slash + 1);  // "" would mean no folder
 }
 
-std::string kind_of(mode_t m) {
-  if (S_ISDIR(m)) return "a directory";
-  if (S_ISFIFO(m)) return "a FIFO";
-  if (S_ISCHR(m)) return "a character device";
-  if (S_ISBLK(m)) return "a block device";
-  if (S_ISSOCK(m)) return "a socket";
-  return "not a regular file";
-}
-
 // Reads a regular file whole. Anything else (a FIFO, a device, a directory) is
 // refused by name before it is opened, and again by its descriptor after (it
 // may have been swapped in between); a file larger than the limit, or than this
@@ -73,7 +65,7 @@ bool read_whole_file(const std::string& path, std::vector<unsigned char>& bytes,
     return false;
   }
   if (!S_ISREG(st.st_mode)) {
-    error = kind_of(st.st_mode) + ", not a regular file: not read";
+    error = detail::file_kind(st.st_mode) + ", not a regular file: not read";
     return false;
   }
   int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);

@@ -17,13 +17,18 @@ namespace cli {
 // Exit codes: 0 success, 1 bad input or a failed run, 2 bad usage.
 constexpr int kExitOk = 0, kExitFailure = 1, kExitUsage = 2;
 
+// `PREFIX: MESSAGE` on stderr, one line.
+inline void vline(const char* prefix, const char* format, std::va_list args) {
+  std::fprintf(stderr, "%s: ", prefix);
+  std::vfprintf(stderr, format, args);
+  std::fputc('\n', stderr);
+}
+
 // `Error: MESSAGE` on stderr (printf-style).
 [[gnu::format(printf, 1, 2)]] inline void error(const char* format, ...) {
   std::va_list args;
   va_start(args, format);
-  std::fputs("Error: ", stderr);
-  std::vfprintf(stderr, format, args);
-  std::fputc('\n', stderr);
+  vline("Error", format, args);
   va_end(args);
 }
 
@@ -31,9 +36,7 @@ constexpr int kExitOk = 0, kExitFailure = 1, kExitUsage = 2;
 [[gnu::format(printf, 1, 2)]] inline void warning(const char* format, ...) {
   std::va_list args;
   va_start(args, format);
-  std::fputs("Warning: ", stderr);
-  std::vfprintf(stderr, format, args);
-  std::fputc('\n', stderr);
+  vline("Warning", format, args);
   va_end(args);
 }
 
