@@ -33,10 +33,8 @@ const char* kUsage =
     "  --frames N                 render N frames and print the time of each pass\n"
     "  --inspect                  overlay silhouette quads, topology problems, focus body\n"
     "  --window                   open a window (default when no -o is given and a display exists)\n"
-    "  --shaders DIR              the shaders/ folder (default: $GEOMVIEW_SHADERS, " GEOM_SHADER_DIR
-    ",\n"
-    "                             then " GEOMVIEW_INSTALLED_SHADER_DIR
-    ")\n"
+    "  --shaders DIR              the shaders/ folder (default: $GEOMVIEW_SHADERS, else\n"
+    "                             %s)\n"
     "Window keys: T technique, L light type, [ ] shadow-map size, I inspection, Esc quit; drag to orbit, scroll to "
     "zoom.\n";
 
@@ -53,6 +51,25 @@ int fail(const std::string& message) {
   return cli::kExitFailure;
 }
 
+// BIN/../share/geom/NAME beside this program's binary (/proc/self/exe), as
+// installed wherever the prefix is, if it exists; else `fallback` (the source
+// tree's, for a binary of the build tree).
+std::string beside_binary(const std::string& name, const std::string& probe, const std::string& fallback) {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec || exe.empty()) return fallback;
+  const std::filesystem::path p = (exe.parent_path() / ".." / "share" / "geom" / name).lexically_normal();
+  return std::filesystem::exists(probe.empty() ? p : p / probe, ec) ? p.string() : fallback;
+}
+
+// The shaders' folder: --shaders, else $GEOMVIEW_SHADERS, else the one beside the binary.
+std::string default_shader_dir() { return beside_binary("shaders", "shade.frag", GEOM_SHADER_DIR); }
+std::string shader_dir(const cli::Args& args) {
+  if (args.has("--shaders")) return args.get("--shaders");
+  const char* env = std::getenv("GEOMVIEW_SHADERS");
+  return env && *env ? std::string(env) : default_shader_dir();
+}
+
 glm::vec3 vec3(const float v[3]) { return glm::vec3(v[0], v[1], v[2]); }
 void store(float out[3], glm::vec3 v) { out[0] = v.x, out[1] = v.y, out[2] = v.z; }
 
@@ -64,11 +81,12 @@ int main(int argc, char** argv) {
                   "--shadow-map-size", "--size", "-o", "--output", "--frames", "--shaders"});
   if (!args.error().empty()) return fail(args.error() + " (see geomview --help)");
   if (args.has("--help") || args.has("-h")) {
-    std::fputs(kUsage, stdout);
+    std::printf(kUsage, default_shader_dir().c_str());
     return 0;
   }
   if (args.positional().size() > 1) return fail("one input file at most");
-  const std::string file = args.positional().empty() ? GEOMVIEW_DEFAULT_SCENE : args.positional()[0];
+  const std::string file = !args.positional().empty() ? args.positional()[0]
+                                                      : beside_binary("default_scene.gltf", "", GEOMVIEW_DEFAULT_SCENE);
 
   // Techniques.
   std::vector<render::Technique> techniques;
@@ -149,11 +167,7 @@ int main(int argc, char** argv) {
   auto platform = render::Platform::open(window, view.width, view.height, "geomview " + file, note, error);
   if (!platform) return fail(error);
   if (!note.empty()) cli::warning("%s", note.c_str());
-  const char* shader_dir = std::getenv("GEOMVIEW_SHADERS");
-  // Shaders: --shaders, GEOMVIEW_SHADERS, the source tree's, or the installed ones.
-  std::string shaders = args.get("--shaders", shader_dir ? shader_dir : GEOM_SHADER_DIR);
-  if (!args.has("--shaders") && !shader_dir && !std::filesystem::exists(shaders + "/shade.frag"))
-    shaders = GEOMVIEW_INSTALLED_SHADER_DIR;
+  const std::string shaders = shader_dir(args);
   render::StatePtr state = baked_bytes.empty() ? render::create_state(imported.scene, shaders, error)
                                                : render::create_state_baked(baked_bytes.data(), baked_bytes.size(),
                                                                             shaders, imported.scene, error);
