@@ -8,9 +8,9 @@
 // the transfer function with its guard zone (Fig. 6): values under 0.25 (on the
 // occluder's side, down to a quad's inner end) are shadow, then a linear ramp
 // through 0.5 at the edge (0.33) to fully lit at 0.41 (a third of a texel out).
-uniform mat4 u_light_matrix;
-uniform sampler2DShadow u_shadow_map;  // comparison sampler, gathered
-uniform sampler2D u_edge_map;          // r encoded distance, b edge depth, a mask
+vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and its clip position
+uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
+uniform sampler2DArray u_edge_map;          // r encoded distance, b edge depth, a mask
 
 float transfer(float e) {
   if (e < 0.25) return 0.0;  // guard zone
@@ -18,22 +18,23 @@ float transfer(float e) {
 }
 
 float shadow_visibility(vec3 world, vec3 normal) {
-  vec4 c = u_light_matrix * vec4(world, 1.0);
+  int layer;
+  vec4 c = face_clip(world, layer);
   if (c.w <= 0.0) return 1.0;
   vec3 p = c.xyz / c.w * 0.5 + 0.5;
   if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
-  ivec2 size = textureSize(u_edge_map, 0);
+  ivec2 size = textureSize(u_edge_map, 0).xy;
   vec2 tc = p.xy * vec2(size) - 0.5;
   ivec2 i = ivec2(floor(tc));
   vec2 f = tc - floor(tc);
   // The comparisons of the 2 x 2 footprint (gather order: (0,1) (1,1) (1,0) (0,0)).
-  vec4 g = textureGather(u_shadow_map, p.xy, p.z);
+  vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(layer)), p.z);
   float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
   if (all(equal(g, vec4(g.x)))) return g.x;  // fully lit or fully shadowed
   float e[4];
   float edge_depth = 0.0;
   for (int k = 0; k < 4; ++k) {
-    vec4 t = texelFetch(u_edge_map, clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0);
+    vec4 t = texelFetch(u_edge_map, ivec3(clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), layer), 0);
     if (t.a == 0.0) return nearest;
     e[k] = t.r;
     edge_depth = max(edge_depth, t.b);
