@@ -55,6 +55,7 @@ GLuint shading_program(Frame& f) {
   set(p, "u_distance_map", 1);
   set(p, "u_edge_map", 1);
   set(p, "u_pcf", f.t == Technique::Pcf ? 1 : 0);
+  set(p, "u_esm_exact", f.t == Technique::EsmExact ? 1 : 0);
   if (f.faces) {
     set(p, "u_faces", f.faces);
     for (int i = 0; i < f.faces; ++i)
