@@ -36,6 +36,7 @@ GLuint shading_program(Frame& f) {
   State& s = f.s;
   std::vector<std::string> files = {"scene.vert", "shade.frag", f.lookup};
   if (f.lookup == "lookup_focused.frag") files.push_back("light_depth.frag");  // its light_depth()
+  if (f.faces) files.push_back("lookup_faces.frag");                           // esm, edsm: face_clip()
   GLuint p = program(s.programs, files, f.error);
   if (!p) return 0;
   const View& view = f.view;
@@ -54,6 +55,13 @@ GLuint shading_program(Frame& f) {
   set(p, "u_distance_map", 1);
   set(p, "u_edge_map", 1);
   set(p, "u_pcf", f.t == Technique::Pcf ? 1 : 0);
+  set(p, "u_esm_exact", f.t == Technique::EsmExact ? 1 : 0);
+  if (f.faces) {
+    set(p, "u_faces", f.faces);
+    for (int i = 0; i < f.faces; ++i)
+      set(p, ("u_face_matrix[" + std::to_string(i) + "]").c_str(), at(glm::dmat4(f.face_clip[i]), s.origin));
+    set(p, "u_face_light", glm::vec3(glm::dvec3(glm::vec3(light.position)) - s.origin));
+  }
   set(p, "u_cube_bias", 0.97f);                // 003, 12.3.7: fDistSquared * DepthBias
   set(p, "u_cube_filter", 1.0f / float(f.n));  // 003, 12.4: tap offsets of about one texel
   return p;

@@ -23,6 +23,7 @@ constexpr TechniqueRow kTechniques[] = {
     {Technique::Psm,     "psm",      false, false, false, true,  false, focused_passes,    nullptr},
     {Technique::Lispsm,  "lispsm",   false, false, false, true,  false, focused_passes,    nullptr},
     {Technique::Uniform, "uniform",  false, false, false, true,  false, focused_passes,    nullptr},
+    {Technique::EsmExact, "esm-exact", true, false, false, true,  false, esm_passes,        nullptr},
 };
 // clang-format on
 constexpr int kCount = int(std::size(kTechniques));
@@ -30,7 +31,7 @@ constexpr int kCount = int(std::size(kTechniques));
 constexpr bool rows_in_enum_order() {
   for (int i = 0; i < kCount; ++i)
     if (int(kTechniques[i].id) != i) return false;
-  return int(Technique::Uniform) + 1 == kCount;
+  return int(Technique::EsmExact) + 1 == kCount;
 }
 static_assert(rows_in_enum_order(), "kTechniques: one row per Technique, in enum order");
 

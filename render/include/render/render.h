@@ -43,7 +43,7 @@
 
 namespace render {
 
-enum class Technique { Ssm, Pcf, Esm, Edsm, Sv, SvZPass, SvZFail, Cube, Psm, Lispsm, Uniform };
+enum class Technique { Ssm, Pcf, Esm, Edsm, Sv, SvZPass, SvZFail, Cube, Psm, Lispsm, Uniform, EsmExact };
 
 // The names of --technique, in order; only techniques this build renders.
 std::vector<Technique> available_techniques();
