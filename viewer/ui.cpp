@@ -205,10 +205,12 @@ bool ui_wants_keyboard() { return ImGui::GetCurrentContext() && ImGui::GetIO().W
 
 namespace {
 
-void controls(WindowModel& m) {
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
+void controls(WindowModel& m, int width) {
+  const float panel_w = 290;
+  ImGui::SetNextWindowPos(ImVec2(std::max(0.0f, float(width) - panel_w - 10), 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(panel_w, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("geomview (H hides)");
+  ImGui::PushItemWidth(130);
   std::string current = render::technique_name(m.all[m.current]);
   if (ImGui::BeginCombo("technique (T)", current.c_str())) {
     for (size_t i = 0; i < m.all.size(); ++i)
@@ -238,6 +240,7 @@ void controls(WindowModel& m) {
     ImGui::TreePop();
   }
   if (!m.status.empty()) ImGui::TextWrapped("%s", m.status.c_str());
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -257,15 +260,14 @@ void ui_window_frame(WindowModel& m, int width, int height) {
         m.overlay_h == height)
       back->AddImage(reinterpret_cast<ImTextureID>(intptr_t(m.overlay_texture)), ImVec2(0, 0),
                      ImVec2(float(width), float(height)));
-    // The HUD: top right, always on.
+    // The HUD: top left, always on.
     Label hud;
     hud.lines = hud_lines(m.figures);
-    const float wide = 330;
-    hud.x = std::max(0, int(float(width) - wide - 10)), hud.y = 10;
+    hud.x = 10, hud.y = 10;
     draw_label(back, hud);
     if (m.settings.inspect && m.counts_valid) draw_label(back, legend_label(m.counts, 10, height - 150));
   }
-  if (m.show_panels) controls(m);
+  if (m.show_panels) controls(m, width);
   ImGui::Render();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, width, height);
