@@ -94,7 +94,8 @@ std::string error_line(const geom::PngImage& mask, const geom::ShadowReference& 
 TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
   Scratch s("compare");
   const std::string obj = write(s, "scene.obj", kScene);
-  const ViewerRun grid = geomview(s, obj + " " + kView + " --size 160x120 --compare ssm,edsm,sv -o " + (s / "grid.png"));
+  const ViewerRun grid =
+      geomview(s, obj + " " + kView + " --size 160x120 --compare ssm,edsm,sv -o " + (s / "grid.png"));
   ASSERT_EQ(grid.exit_code, 0) << grid.err;
   const geom::PngImage g = read_rgb(s / "grid.png");
   ASSERT_EQ(g.width, 3 * 160 + 2 * 2);
@@ -108,8 +109,8 @@ TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
     EXPECT_TRUE(std::regex_match(hud[3 * i + 1], std::regex(R"(shadow [0-9.]+ ms, frame [0-9.]+ ms \((GPU|wall)\))")))
         << hud[3 * i + 1];
     // The panel's error is the CLI's for the same view.
-    const ViewerRun cli = geomview(s, obj + " " + kView + " --size 160x120 --error --technique " + names[i] + " -o " +
-                                    (s / "one.png"));
+    const ViewerRun cli =
+        geomview(s, obj + " " + kView + " --size 160x120 --error --technique " + names[i] + " -o " + (s / "one.png"));
     ASSERT_EQ(cli.exit_code, 0) << cli.err;
     EXPECT_EQ(cli.lines(std::string(names[i]) + " "), std::vector<std::string>{hud[3 * i + 2]});
     // Below its label the panel is the technique's own image; the label changed the top left.
@@ -188,7 +189,8 @@ TEST(GlViewer, HudFiguresAreTheCliAndTheReference) {
          rest = m.suffix())
       if (m[1] != "total") cli_passes.push_back(m[1]);
   }
-  for (size_t i = 3; i < lines.size(); ++i) hud_passes.push_back(lines[i].substr(2, lines[i].rfind(' ', lines[i].size() - 4) - 2));
+  for (size_t i = 3; i < lines.size(); ++i)
+    hud_passes.push_back(lines[i].substr(2, lines[i].rfind(' ', lines[i].size() - 4) - 2));
   EXPECT_EQ(hud_passes, cli_passes) << hud.out << frames.out;
   // The HUD is drawn into the top left of the image, and nowhere else.
   const geom::PngImage a = read_rgb(s / "hud.png"), b = read_rgb(s / "plain.png");
@@ -212,8 +214,9 @@ glm::vec2 project(glm::vec3 p) {
 TEST(GlViewer, InspectionShowsEveryEdgeOfTheFin) {
   Scratch s("fin");
   const std::string obj = write(s, "fin.obj", fin_obj());
-  const ViewerRun r = geomview(s, obj + " " + kFinView + " --size 320x240 --light 3,4,2,1 --technique ssm --inspect --hud -o " +
-                                (s / "fin.png"));
+  const ViewerRun r =
+      geomview(s, obj + " " + kFinView + " --size 320x240 --light 3,4,2,1 --technique ssm --inspect --hud -o " +
+                      (s / "fin.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.lines("hud: inspection report: "),
             std::vector<std::string>{"boundary 9 non-manifold 1 inconsistent 0 degenerate 0"});
@@ -260,7 +263,8 @@ TEST(GlViewer, InspectionShowsOaDm1sNonManifoldEdges) {
   const std::string info = slurp(info_path);
   ASSERT_TRUE(std::regex_search(info, m, std::regex(R"((\d+) boundary, (\d+) inconsistent, (\d+) non-manifold)")))
       << info;
-  const ViewerRun r = geomview(s, quoted(kOaDm1) + " --size 320x240 --technique ssm --inspect --hud -o " + (s / "dm1.png"));
+  const ViewerRun r =
+      geomview(s, quoted(kOaDm1) + " --size 320x240 --technique ssm --inspect --hud -o " + (s / "dm1.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<std::string> report = r.lines("hud: inspection report: ");
   ASSERT_EQ(report.size(), 1u) << r.out;

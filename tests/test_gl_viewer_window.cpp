@@ -30,9 +30,8 @@ TEST(GlViewerWindow, KeysHudPanelsAndScreenshot) {
   const std::string obj = s / "scene.obj";
   std::ofstream(obj) << kScene;
   // pcf, T -> esm, T -> edsm, I inspection on, E measure the error.
-  const ViewerRun w =
-      geomview(s, obj + " " + kView + " --window --technique pcf --script ttie --screenshot " + (s / "shot.png"),
-               "xvfb-run -a");
+  const ViewerRun w = geomview(
+      s, obj + " " + kView + " --window --technique pcf --script ttie --screenshot " + (s / "shot.png"), "xvfb-run -a");
   ASSERT_EQ(w.exit_code, 0) << w.err;
   EXPECT_EQ(w.err.find("rendering headless"), std::string::npos) << w.err;
   const std::vector<std::string> hud = w.lines("hud: ");

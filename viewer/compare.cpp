@@ -24,7 +24,8 @@ bool render_grid(render::State& state, const geom::Scene& scene, const std::vect
   if (with_error && !make_reference(scene, view, light, ref, error)) return false;
   const bool gpu = render::timing_kind(state).rfind("GPU", 0) == 0;
   for (size_t i = 0; i < n; ++i) {
-    const int x0 = int(i % size_t(g.columns)) * (view.width + gap), y0 = int(i / size_t(g.columns)) * (view.height + gap);
+    const int x0 = int(i % size_t(g.columns)) * (view.width + gap),
+              y0 = int(i / size_t(g.columns)) * (view.height + gap);
     Figures f;
     f.technique = techniques[i];
     f.map_size = settings.shadow_map_size;

@@ -18,6 +18,5 @@ int main(int argc, char** argv) {
   if (!viewer::open_session(options, session, error)) return viewer::fail(error);
   std::fprintf(stderr, "geomview: %s, %s (%zu triangles)\n", session.platform->description().c_str(),
                render::renderer_name(*session.state).c_str(), session.scene.triangle_count());
-  return session.platform->has_window() ? viewer::run_window(options, session)
-                                        : viewer::run_headless(options, session);
+  return session.platform->has_window() ? viewer::run_window(options, session) : viewer::run_headless(options, session);
 }

@@ -169,7 +169,8 @@ int parse_options(int argc, char** argv, Options& o) {
   o.screenshot = args.get("--screenshot");
   o.shaders = find_shaders(args.get("--shaders"));
   o.window = args.has("--window") || (o.out_path.empty() && std::getenv("DISPLAY"));
-  if (!o.window && o.out_path.empty()) return fail("no display: give -o FILE.png (or run under xvfb-run with --window)");
+  if (!o.window && o.out_path.empty())
+    return fail("no display: give -o FILE.png (or run under xvfb-run with --window)");
   return -1;
 }
 

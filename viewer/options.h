@@ -13,7 +13,7 @@
 namespace viewer {
 
 struct Options {
-  std::string file;                          // the input (the bundled default scene when absent)
+  std::string file;                           // the input (the bundled default scene when absent)
   std::vector<render::Technique> techniques;  // --technique (pcf when absent)
   std::vector<render::Technique> compare;     // --compare: the grid's panels (empty: no grid)
   render::FrameSettings settings;

@@ -2,6 +2,8 @@
 // (technique, light, map size, inspection, camera, error, compare grid), the
 // HUD and the legend; headless labels through an offscreen framebuffer.
 #define GL_GLEXT_PROTOTYPES 1
+#include "ui.h"
+
 #include <GL/glcorearb.h>
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -11,8 +13,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-
-#include "ui.h"
 
 namespace viewer {
 namespace {
@@ -92,7 +92,7 @@ Label legend_label(const render::InspectionCounts& c, int x, int y) {
           c.drawn.inconsistent_edges);
   counted(render::InspectKind::Degenerate, "degenerate faces", c.report.degenerate_faces, c.drawn.degenerate_faces);
   line(render::InspectKind::Silhouette, "silhouette quads (this light)");
-  line(render::InspectKind::FocusBody, "focus body H");
+  line(render::InspectKind::FocusBody, "focus body H (psm, lispsm, uniform)");
   return l;
 }
 

@@ -23,10 +23,14 @@ void store(float out[3], glm::vec3 v) { out[0] = v.x, out[1] = v.y, out[2] = v.z
 
 int key_of(char c) {
   switch (c) {
-    case '[': return GLFW_KEY_LEFT_BRACKET;
-    case ']': return GLFW_KEY_RIGHT_BRACKET;
-    case 'q': return GLFW_KEY_ESCAPE;
-    default: return c >= 'a' && c <= 'z' ? GLFW_KEY_A + (c - 'a') : -1;
+    case '[':
+      return GLFW_KEY_LEFT_BRACKET;
+    case ']':
+      return GLFW_KEY_RIGHT_BRACKET;
+    case 'q':
+      return GLFW_KEY_ESCAPE;
+    default:
+      return c >= 'a' && c <= 'z' ? GLFW_KEY_A + (c - 'a') : -1;
   }
 }
 
@@ -34,9 +38,9 @@ int key_of(char c) {
 std::string view_key(const geom::Camera& v, const geom::Light& l, const render::FrameSettings& s, int w, int h) {
   char b[512];
   std::snprintf(b, sizeof b, "%g %g %g %g %g %g %g %g %g|%d %g %g %g %g %g %g %g|%d %d %d|%d %d", v.eye[0], v.eye[1],
-                v.eye[2], v.target[0], v.target[1], v.target[2], v.up[0], v.up[1], v.up[2], int(l.type),
-                l.position[0], l.position[1], l.position[2], l.direction[0], l.direction[1], l.direction[2],
-                l.outer_cone, int(s.technique), s.shadow_map_size, int(s.inspect), w, h);
+                v.eye[2], v.target[0], v.target[1], v.target[2], v.up[0], v.up[1], v.up[2], int(l.type), l.position[0],
+                l.position[1], l.position[2], l.direction[0], l.direction[1], l.direction[2], l.outer_cone,
+                int(s.technique), s.shadow_map_size, int(s.inspect), w, h);
   return b;
 }
 
@@ -140,12 +144,12 @@ int run_window(Options& o, Session& s) {
     view.width = std::max(fb_w, 1), view.height = std::max(fb_h, 1);
     const std::string key = view_key(view, light, m.settings, fb_w, fb_h);
     const std::string name = render::technique_name(m.settings.technique);
-    const std::string want_title =
-        "geomview: " + (m.compare ? std::string("compare grid") : name +
-                                   (render::technique_has_map(m.settings.technique)
-                                        ? " " + std::to_string(m.settings.shadow_map_size)
-                                        : std::string())) +
-        " - " + o.file;
+    const std::string want_title = "geomview: " +
+                                   (m.compare ? std::string("compare grid")
+                                              : name + (render::technique_has_map(m.settings.technique)
+                                                            ? " " + std::to_string(m.settings.shadow_map_size)
+                                                            : std::string())) +
+                                   " - " + o.file;
     if (want_title != title) glfwSetWindowTitle(glfwGetCurrentContext(), (title = want_title).c_str());
     if (m.settings.inspect && !m.counts_valid) m.counts_valid = render::inspection_counts(*s.state, m.counts, error);
     if (fb_w > 0 && fb_h > 0 && m.compare) {

@@ -1,7 +1,8 @@
 // inspection.cpp: the overlay drawn over the shaded frame (colour output
 // only): the topology problems of the mesh (boundary, non-manifold and
 // inconsistent edges, degenerate faces), the silhouette quads of the current
-// light, and the focus body H of the focused shadow map (geom/focus.h).
+// light, and the focus body H of the focused shadow maps (psm, lispsm,
+// uniform: geom/focus.h).
 //
 // Order, so that no topology problem hides: the silhouette quads (orange,
 // about 3 pixels, no depth write), the focus body (green, 2 pixels, over
@@ -61,15 +62,13 @@ bool inspection_counts(State& s, InspectionCounts& out, std::string& error) {
     out.drawn.degenerate_faces += uint64_t(c.line_count[3] / 6);
   }
   const geom::Scene& scene = s.scene;
-  const geom::WeldResult w =
-      geom::weld(geom::positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                 scene.indices.size());
+  const geom::WeldResult w = geom::weld(geom::positions_of(scene.positions.data(), scene.vertex_count()),
+                                        scene.indices.data(), scene.indices.size());
   geom::TopologyOptions options;
   options.dihedral_angles = false;
-  const geom::TopologyStats t =
-      geom::build_topology(geom::positions_of(w.positions.data(), w.positions.size() / 3), w.indices.data(),
-                           w.indices.size() / 3, options)
-          .stats;
+  const geom::TopologyStats t = geom::build_topology(geom::positions_of(w.positions.data(), w.positions.size() / 3),
+                                                     w.indices.data(), w.indices.size() / 3, options)
+                                    .stats;
   out.report.boundary_edges = t.boundary_edges, out.report.non_manifold_edges = t.non_manifold_edges;
   out.report.inconsistent_edges = t.inconsistent_edges;
   out.report.degenerate_faces = t.collapsed_triangles + t.zero_area_triangles;
@@ -101,8 +100,9 @@ bool inspection_pass(Frame& f, geom::FocusMethod method) {
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
   }
   glBindTextureUnit(2, 0);
-  // The focus body H of the focused shadow map, as a wireframe drawn over everything.
-  const geom::FocusResult r = focus(s, f.view, float(f.w) / float(f.h), f.light, method, true);
+  // The focus body H of a focused shadow map, as a wireframe drawn over everything.
+  geom::FocusResult r;
+  if (f.focused) r = focus(s, f.view, float(f.w) / float(f.h), f.light, method, true);
   std::vector<float> edges;
   size_t first = 0;
   for (uint32_t n : r.face_sizes) {

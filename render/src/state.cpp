@@ -235,8 +235,8 @@ geom::Camera default_view(const State& s, int width, int height, int up_axis) {
                       c & 4 ? s.scene_hi.z : s.scene_lo.z);
     const glm::vec3 d = p - target;
     const float along = glm::dot(d, back);  // towards the eye
-    distance = std::max({distance, along + std::fabs(glm::dot(d, side)) / tan_h,
-                         along + std::fabs(glm::dot(d, top)) / tan_v});
+    distance =
+        std::max({distance, along + std::fabs(glm::dot(d, side)) / tan_h, along + std::fabs(glm::dot(d, top)) / tan_v});
   }
   const glm::vec3 eye = target + back * distance;
   for (int k = 0; k < 3; ++k) v.eye[k] = eye[k], v.target[k] = target[k], v.up[k] = up[k];
