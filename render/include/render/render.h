@@ -146,7 +146,30 @@ std::string timing_kind(State& state);    // "GPU timer queries" or "wall time a
 // Bounding sphere of the scene (centre xyz, radius), for default cameras and light frusta.
 void scene_bounds(const State& state, float out[4]);
 
-// The default camera: the scene's bounding sphere seen from above, front and right.
+// The default camera: the whole bounding sphere of the scene in view (both
+// fields of view), seen from the front, right and above, where "above" is
+// along `up_axis` (0 x, 1 y, 2 z: Quake 3's maps and models are Z-up).
+// geomview's default camera and its reset key.
+geom::Camera default_view(const State& state, int width, int height, int up_axis);
+// The earlier fixed view (centre lowered by a fifth of the radius, at 0.9
+// radius: close, may crop): the golden images and geombench's scenes use it.
 geom::Camera default_view(const State& state, int width, int height);
+
+// What the inspection overlay draws, counted as the topology report counts it
+// (geom/topology.h, per caster, summed): its legend. Bakes the casters first.
+// `report`: the topology report of the whole scene after an exact weld (what
+// `geombake info` prints); `drawn`: what the overlay draws, per caster (an
+// edge that two casters share counts in each, never as non-manifold).
+struct InspectionCounts {
+  struct Kinds {
+    uint64_t boundary_edges = 0, non_manifold_edges = 0, inconsistent_edges = 0, degenerate_faces = 0;
+  };
+  Kinds report, drawn;
+  size_t casters = 0;
+};
+bool inspection_counts(State& state, InspectionCounts& out, std::string& error);
+// The overlay's colours (RGB 0..1), for legends and the tests that count its pixels.
+enum class InspectKind { Boundary, NonManifold, Inconsistent, Degenerate, Silhouette, FocusBody };
+void inspection_colour(InspectKind kind, float rgb[3]);
 
 }  // namespace render
