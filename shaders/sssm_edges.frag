@@ -6,7 +6,7 @@
 // point of the segment (a silhouette vertex) lying in the cell is stored;
 // otherwise the segment's crossings with the cell's two diagonals (their mean
 // where it crosses both); a segment that crosses the cell without meeting a
-// diagonal (it clips a corner) leaves the cell to its neighbours.
+// diagonal (it clips a corner) stores the middle of its part inside the cell.
 // One point per cell: where several edges meet a cell the one nearest the light
 // is kept (the depth test; Sen et al. keep the last one drawn, an order a
 // rasterizer does not fix). Edges hidden from the light are not written: the
@@ -16,7 +16,7 @@ flat in vec4 f_segment;
 flat in vec2 f_depth;
 uniform float u_map_size;
 uniform sampler2D u_depth;  // the light's depth map, read without comparison
-layout(location = 0) out vec2 o_point;
+layout(location = 0) out vec4 o_point;
 
 // The segment's crossing with the diagonal c + s d (|s| <= 0.5), as segment parameter; -1 when none.
 float crossing(vec2 A, vec2 ab, vec2 c, vec2 d) {
@@ -38,8 +38,15 @@ void main() {
     u = 1.0;
   } else {
     float u1 = crossing(A, ab, c, vec2(1.0, 1.0)), u2 = crossing(A, ab, c, vec2(1.0, -1.0));
-    if (u1 < 0.0 && u2 < 0.0) discard;
-    u = u1 < 0.0 ? u2 : u2 < 0.0 ? u1 : 0.5 * (u1 + u2);
+    if (u1 < 0.0 && u2 < 0.0) {  // clipping a corner: the middle of the part inside the cell
+      vec2 lo = (c - 0.5 - A) / ab, hi = (c + 0.5 - A) / ab;
+      vec2 t0 = min(lo, hi), t1 = max(lo, hi);
+      float a = max(max(t0.x, t0.y), 0.0), b = min(min(t1.x, t1.y), 1.0);
+      if (!(a <= b)) discard;
+      u = 0.5 * (a + b);
+    } else {
+      u = u1 < 0.0 ? u2 : u2 < 0.0 ? u1 : 0.5 * (u1 + u2);
+    }
   }
   vec2 p = A + u * ab;
   float z_edge = mix(f_depth.x, f_depth.y, u);
@@ -48,6 +55,6 @@ void main() {
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(t + ivec2(x, y), ivec2(0), top), 0).r);
   if (z_edge > z_far + 1e-5) discard;
-  o_point = clamp(p - c, vec2(-0.5), vec2(0.5));
+  o_point = vec4(clamp(p - c, vec2(-0.5), vec2(0.5)), z_edge, 1.0);
   gl_FragDepth = clamp(z_edge, 0.0, 1.0);
 }

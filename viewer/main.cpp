@@ -23,13 +23,15 @@ namespace {
 const char* kUsage =
     "Usage: geomview [FILE] [options]   (FILE: a baked .gbake container, or a mesh or scene file baked in\n"
     "                                    process; the bundled default scene when absent)\n"
-    "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform, or all\n"
+    "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform sssm edsm-soft\n"
+    "                             pcf-soft, or all\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"
     "  --light X,Y,Z,W            W=1 point light at X,Y,Z; W=0 directional light at infinity towards X,Y,Z\n"
     "  --spot DX,DY,DZ,DEG        a spot at the --light position shining along DX,DY,DZ, cone half-angle DEG\n"
     "  --shadow-map-size N        (default 1024)    --size WxH  image size (default 640x480)\n"
     "  -o FILE.png                output (several techniques: -o DIR, one DIR/NAME.png per technique)\n"
     "  --output color|mask        mask: 8-bit grey, 255 lit, 0 shadow, 128 no geometry\n"
+    "  --light-radius R           edsm-soft, pcf-soft: the light's disc (world units; radians for a sun; default 0)\n"
     "  --frames N                 render N frames and print the time of each pass\n"
     "  --inspect                  overlay silhouette quads, topology problems, focus body\n"
     "  --window                   open a window (default when no -o is given and a display exists)\n"
@@ -61,7 +63,7 @@ void store(float out[3], glm::vec3 v) { out[0] = v.x, out[1] = v.y, out[2] = v.z
 int main(int argc, char** argv) {
   cli::Args args(std::vector<std::string>(argv + 1, argv + argc), {"--help", "-h", "--inspect", "--window"},
                  {"--technique", "--eye", "--target", "--up", "--fovy", "--near", "--far", "--light", "--spot",
-                  "--shadow-map-size", "--size", "-o", "--output", "--frames", "--shaders"});
+                  "--shadow-map-size", "--size", "-o", "--output", "--frames", "--shaders", "--light-radius"});
   if (!args.error().empty()) return fail(args.error() + " (see geomview --help)");
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kUsage, stdout);
@@ -97,6 +99,8 @@ int main(int argc, char** argv) {
   if (output != "color" && output != "mask") return fail("--output must be color or mask, not '" + output + "'");
   settings.output = output == "mask" ? render::Output::Mask : render::Output::Color;
   settings.shadow_map_size = std::atoi(args.get("--shadow-map-size", "1024").c_str());
+  settings.light_radius = float(std::atof(args.get("--light-radius", "0").c_str()));
+  if (!(settings.light_radius >= 0) || settings.light_radius > 1e6) return fail("--light-radius must be >= 0");
   if (settings.shadow_map_size < 16 || settings.shadow_map_size > 16384)
     return fail("--shadow-map-size must be within 16..16384");
   const int frames = std::atoi(args.get("--frames", "1").c_str());

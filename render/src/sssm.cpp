@@ -4,6 +4,8 @@
 // (geom/adjacency.h) and stores one point on the silhouette per cell of a
 // second map offset by half a texel (shaders/sssm_edges.*); the lookup,
 // shaders/lookup_sssm.frag, rebuilds the boundary from the 3 x 3 neighbourhood.
+#include <cstdlib>
+
 #include "state.h"
 
 namespace render {
@@ -14,7 +16,7 @@ bool sssm_passes(Frame& f) {
   f.light_frame = light_frame(s, f.light);
   const glm::mat4 light_clip = f.light_frame.clip();
   if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
-  ensure_edge_map(s, n, GL_RG32F);
+  ensure_edge_map(s, n, GL_RGBA32F);  // point offset, edge depth, written
   GLuint p = program(s.programs, {"sssm_edges.vert", "sssm_edges.geom", "sssm_edges.frag"}, f.error);
   if (!p) return false;
   set(p, "u_matrix", light_clip);
@@ -39,6 +41,17 @@ bool sssm_passes(Frame& f) {
   finish_map(f);
   f.second_texture = s.edge_map.color;
   f.lookup = "lookup_sssm.frag";
+  return true;
+}
+
+// The shading: GEOM_SSSM_PAPER=1 in the environment draws the paper's lookup
+// without the receiver test (lookup_sssm.frag), to measure the deviation.
+bool sssm_shade(Frame& f, GLuint p) {
+  const char* paper = std::getenv("GEOM_SSSM_PAPER");
+  set(p, "u_sssm_paper", paper && paper[0] == '1' ? 1 : 0);
+  f.timer.begin("shading");
+  draw_scene(f.s);
+  f.timer.end();
   return true;
 }
 

@@ -133,7 +133,8 @@ bool edsm_passes(Frame& f);        // edsm.cpp
 bool focused_passes(Frame& f);     // focused.cpp: psm, lispsm, uniform
 bool cube_passes(Frame& f);        // cube.cpp
 bool sssm_passes(Frame& f);        // sssm.cpp
-bool edsm_soft_passes(Frame& f);   // soft.cpp: edsm-soft
+bool sssm_shade(Frame& f, GLuint p);
+bool edsm_soft_passes(Frame& f);  // soft.cpp: edsm-soft
 bool edsm_soft_shade(Frame& f, GLuint p);
 bool pcf_soft_passes(Frame& f);  // soft.cpp: pcf-soft
 bool pcf_soft_shade(Frame& f, GLuint p);

@@ -23,7 +23,7 @@ constexpr TechniqueRow kTechniques[] = {
     {Technique::Psm,     "psm",      false, false, false, true,  false, focused_passes,    nullptr},
     {Technique::Lispsm,  "lispsm",   false, false, false, true,  false, focused_passes,    nullptr},
     {Technique::Uniform, "uniform",  false, false, false, true,  false, focused_passes,    nullptr},
-    {Technique::Sssm,    "sssm",     false, false, true,  true,  false, sssm_passes,       nullptr},
+    {Technique::Sssm,    "sssm",     false, false, true,  true,  false, sssm_passes,       sssm_shade},
     {Technique::EdsmSoft,"edsm-soft",false, false, true,  true,  false, edsm_soft_passes,  edsm_soft_shade},
     {Technique::PcfSoft, "pcf-soft", false, false, false, true,  false, pcf_soft_passes,   pcf_soft_shade},
 };
