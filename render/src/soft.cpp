@@ -1,9 +1,9 @@
 // soft.cpp: soft shadows of a disc light (FrameSettings::light_radius).
 //  - edsm-soft (seed 001, Sect. 6 and Fig. 6.1; seed 000, Sect. 3.2): the edge
-//    distance shadow map's passes (the depth map, then shaders/edsm_edges.* as
-//    edsm.cpp draws them) with edge quads as wide as the frame's widest
-//    penumbra; the lookup (shaders/lookup_edsm_soft.frag) turns the signed edge
-//    distance into a light fraction with the disc's kernel (soft_light.frag).
+//    distance shadow map's passes (the depth map, then the edge quads of
+//    edsm_edges.vert and edsm_soft_edges.geom / .frag: each as wide as the
+//    widest penumbra its edge casts, kMaxReach texels at most); the lookup (shaders/lookup_edsm_soft.frag) turns the
+//    signed edge distance into a light fraction with the disc's kernel (soft_light.frag).
 //  - pcf-soft, the baseline: the depth map, then PCF with a kernel as wide as
 //    the penumbra after a blocker search (shaders/lookup_pcf_soft.frag).
 // Both estimate the penumbra the same way (soft_light.frag) and share its reach.
@@ -57,11 +57,14 @@ bool edsm_soft_passes(Frame& f) {
   const glm::mat4 light_clip = f.light_frame.clip();
   if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
   ensure_edge_map(s, n, GL_RG32F);
-  GLuint p = program(s.programs, {"edsm_edges.vert", "edsm_edges.geom", "edsm_edges.frag"}, f.error);
+  GLuint p = program(s.programs, {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"}, f.error);
   if (!p) return false;
   set(p, "u_matrix", light_clip);
   set(p, "u_map_size", float(n));
-  set(p, "u_half_width", reach(f));
+  set(p, "u_half_width", 2.0f);  // the hard edsm's
+  set(p, "u_max_half_width", reach(f));
+  set(p, "u_light_proj", f.light_frame.proj);
+  set(p, "u_light_radius", f.fs.light_radius);
   set(p, "u_depth", 1);
   f.timer.begin("edge distance map");
   glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
