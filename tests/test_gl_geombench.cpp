@@ -195,7 +195,9 @@ TEST(GeombenchQuick, WritesTableCsvJsonSvg) {
 TEST(GeombenchQuick, BadUsageFailsCleanly) {
   EXPECT_NE(std::system((std::string("'") + GEOMBENCH_EXE + "' --sizes 3 > /dev/null 2>&1").c_str()), 0);
   EXPECT_NE(std::system((std::string("'") + GEOMBENCH_EXE + "' --techniques nope > /dev/null 2>&1").c_str()), 0);
-  EXPECT_NE(std::system((std::string("'") + GEOMBENCH_EXE + "' --quick --no-bake -o /dev/null/dir > /dev/null 2>&1").c_str()), 0);
+  EXPECT_NE(
+      std::system((std::string("'") + GEOMBENCH_EXE + "' --quick --no-bake -o /dev/null/dir > /dev/null 2>&1").c_str()),
+      0);
 }
 #endif
 

@@ -289,7 +289,8 @@ TEST(Hostile, ConcurrentWritersNeverShareATempFile) {
 // folder then holds finished outputs only, and they are complete.
 TEST(Hostile, KillAndSigintMidWriteThenACleanRun) {
   const fs::path d = scratch("kill"), out = d / "out";
-  write(d / "grid.obj", grid_obj(250));
+  const bool sanitized = cli::kSanitizerFactor > 1;  // slower: fewer and smaller runs
+  write(d / "grid.obj", grid_obj(sanitized ? 120 : 250));
   write(d / "cube.off", kCube);
   const std::vector<std::string> args = {
       "bake", (d / "grid.obj").string(), (d / "cube.off").string(), "-o", out.string(), "-j", "2"};
@@ -298,7 +299,8 @@ TEST(Hostile, KillAndSigintMidWriteThenACleanRun) {
   const std::string expected = cli::slurp(out / "grid.obj.gbake");
   int interrupted = 0;
   for (int sig : {SIGINT, SIGKILL}) {
-    for (int delay_ms : {1, 20, 60, 120, 200, 300, 450, 700}) {
+    for (int delay_ms :
+         sanitized ? std::vector<int>{5, 60, 200, 500} : std::vector<int>{1, 20, 60, 120, 200, 300, 450, 700}) {
       fs::remove_all(out);
       const pid_t pid = spawn(args, {"GEOM_NO_O_TMPFILE=1"});
       ASSERT_GT(pid, 0);
@@ -315,7 +317,7 @@ TEST(Hostile, KillAndSigintMidWriteThenACleanRun) {
       EXPECT_TRUE(cli::slurp(out / "grid.obj.gbake") == expected);
     }
   }
-  EXPECT_GT(interrupted, 4);  // most runs were really cut short
+  EXPECT_GT(interrupted, sanitized ? 2 : 4);  // most runs were really cut short
 }
 
 // glTF external URIs stay in the asset's folder unless --allow-outside-uris;
@@ -346,6 +348,16 @@ TEST(Hostile, TraversalUrisAreConfined) {
   EXPECT_EQ(r.exit_code, 0) << cli::describe(r);
   r = cli::run({"info", (asset / "up.gltf").string()}, d, 30);
   EXPECT_EQ(r.exit_code, 1) << cli::describe(r);
+  // A glTF inside an archive has no folder: its external files are never looked up (in the working directory).
+  const std::string gltf = triangle_gltf("secret.bin");
+  int err = 0;
+  zip_t* z = zip_open((d / "a.pk3").c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+  ASSERT_NE(z, nullptr);
+  ASSERT_GE(zip_file_add(z, "m/t.gltf", zip_source_buffer(z, gltf.data(), gltf.size(), 0), 0), 0);
+  ASSERT_EQ(zip_close(z), 0);
+  r = cli::run({"info", (d / "a.pk3").string() + ":m/t.gltf"}, d, 30);
+  EXPECT_EQ(r.exit_code, 1) << cli::describe(r);
+  EXPECT_TRUE(has(r.err, "'secret.bin' is an external file, but the asset has no folder")) << r.err;
 }
 
 // Any file name: --json stays valid UTF-8 with the name kept losslessly
@@ -411,7 +423,7 @@ TEST(Hostile, NotAMeshAndBadOutputs) {
 // A million glTF nodes bake in linear time (one used to run past 180 s).
 TEST(Hostile, MillionGltfNodes) {
   const fs::path d = scratch("nodes");
-  const int n = cli::kSanitizerFactor > 1 ? 200000 : 1000000;
+  const int n = cli::kSanitizerFactor > 1 ? 100000 : 1000000;
   std::string nodes = "{\"mesh\":0,\"children\":[1]}";
   for (int i = 1; i + 1 < n; ++i) nodes += ",{\"children\":[" + std::to_string(i + 1) + "]}";
   nodes += ",{\"mesh\":0,\"translation\":[0,0,1]}";
@@ -423,6 +435,49 @@ TEST(Hostile, MillionGltfNodes) {
   EXPECT_EQ(r.exit_code, 1) << cli::describe(r);
   EXPECT_TRUE(has(r.err, "nodes.gltf: timed out after 0.01 s (--timeout)")) << r.err;
   EXPECT_LT(r.wall_seconds, 10 * cli::kSanitizerFactor);
+}
+
+// Work abandoned by --timeout really stops (its next allocation throws, it
+// unwinds) instead of running on beside the inputs still baking: with enough
+// quick inputs after it to outlast it, the run costs the quick inputs plus a
+// fraction of the slow one, not both whole; nothing crashes while it unwinds.
+TEST(Hostile, TimedOutWorkIsStopped) {
+  const fs::path d = scratch("abandon");
+  const int n = cli::kSanitizerFactor > 1 ? 50000 : 200000;
+  std::string nodes = "{\"mesh\":0}", roots = "0";
+  for (int i = 1; i < n; ++i) {
+    nodes += ",{\"mesh\":0,\"translation\":[" + std::to_string(i) + ",0,0]}";
+    roots += "," + std::to_string(i);
+  }
+  write(d / "slow.gltf", triangle_gltf("", ",\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[" + roots + "]}]"));
+  write(d / "q0.obj", grid_obj(100));
+  const cli::Run slow =
+      cli::run({"bake", (d / "slow.gltf").string(), "-o", (d / "slow.gbake").string()}, d / "l1", 120);
+  ASSERT_EQ(slow.exit_code, 0) << cli::describe(slow);
+  const cli::Run one = cli::run({"bake", (d / "q0.obj").string(), "-o", (d / "q0.gbake").string()}, d / "l2", 120);
+  ASSERT_EQ(one.exit_code, 0) << cli::describe(one);
+  // Enough quick inputs to take twice the slow one's time.
+  const int quick = std::clamp(int(2 * slow.cpu_seconds / std::max(one.cpu_seconds, 1e-3)), 4, 150);
+  std::vector<std::string> args = {"bake", "-j", "1", "-o", (d / "q1").string()};
+  for (int i = 0; i < quick; ++i) {
+    const fs::path q = d / ("q" + std::to_string(i) + ".obj");
+    if (i) fs::copy_file(d / "q0.obj", q);
+    args.push_back(q.string());
+  }
+  const cli::Run alone = cli::run(args, d / "l3", 300);
+  ASSERT_EQ(alone.exit_code, 0) << cli::describe(alone);
+  args[4] = (d / "q2").string();  // a fresh folder: every output written both times
+  args.insert(args.begin() + 5, (d / "slow.gltf").string());
+  // A limit far under the slow input's time, far over a quick one's (under load or a sanitizer too).
+  const double limit = std::max(0.05 * slow.wall_seconds, 3 * one.wall_seconds);
+  ASSERT_LT(limit, 0.4 * slow.wall_seconds) << "slow " << slow.wall_seconds << " s, quick " << one.wall_seconds << " s";
+  args.insert(args.end(), {"--timeout", std::to_string(limit)});
+  const cli::Run both = cli::run(args, d / "l4", 300);
+  EXPECT_EQ(both.exit_code, 1) << cli::describe(both);
+  EXPECT_TRUE(has(both.err, "slow.gltf: timed out after")) << both.err;
+  EXPECT_EQ(cli::listing(d / "q2").size(), size_t(quick)) << both.err.substr(0, 2000);
+  EXPECT_LT(both.cpu_seconds, alone.cpu_seconds + 0.4 * slow.cpu_seconds)
+      << "slow alone " << slow.cpu_seconds << " s, " << quick << " quick alone " << alone.cpu_seconds << " s";
 }
 
 // --max-memory bounds what is really allocated, not an estimate from the

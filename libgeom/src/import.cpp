@@ -38,7 +38,7 @@ std::string lower_extension(const std::string& name) {
 
 std::string directory_of(const std::string& path) {
   size_t slash = path.find_last_of("/\\");
-  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+  return slash == std::string::npos ? std::string("./") : path.substr(0, slash + 1);  // "" would mean no folder
 }
 
 std::string kind_of(mode_t m) {

@@ -30,6 +30,8 @@ std::string resolve_external_uri(const std::string& base_dir, const std::string&
   path = base_dir.empty() ? decoded : base_dir.back() == '/' ? base_dir + decoded : base_dir + "/" + decoded;
   if (decoded.find('\0') != std::string::npos) return "'" + uri + "' holds a NUL byte";
   if (allow_outside) return "";
+  if (base_dir.empty())  // import_memory() without a folder, an archive member: nothing beside it to read
+    return "'" + uri + "' is an external file, but the asset has no folder (read from memory or an archive)";
   // A scheme: letters, digits, '+', '-', '.' before the first ':' (RFC 3986 3.1).
   const size_t colon = uri.find(':');
   if (colon != std::string::npos && colon > 0 && std::isalpha(static_cast<unsigned char>(uri[0])) &&

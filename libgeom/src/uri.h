@@ -13,7 +13,10 @@ std::string percent_decode(const std::string& uri);
 // `path` (base_dir joined with the decoded URI). Returns "" if it may be read,
 // else why not. Unless `allow_outside`, the file must lie in base_dir or below
 // it once "..", "." and symlinks are resolved: an absolute path, a URI with a
-// scheme ("file:", "http:") or one that climbs out is refused.
+// scheme ("file:", "http:") or one that climbs out is refused, and so is
+// every external file of an asset with no folder (base_dir empty: read from
+// memory, or an archive member), which would otherwise be looked up in the
+// working directory.
 std::string resolve_external_uri(const std::string& base_dir, const std::string& uri, bool allow_outside,
                                  std::string& path);
 

@@ -7,8 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
+#include <numeric>
+#include <unordered_map>
 
 namespace geom {
 namespace {
@@ -40,10 +43,77 @@ bool finite3(const T* p) {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
 
+// A shadow ray's context: the filter skips the hits on one object (`skip`) or
+// keeps only those (`only`), and records the object of the hit it accepts.
+struct ObjectFilter {
+  RTCIntersectContext context;
+  const uint32_t* objects = nullptr;
+  uint32_t skip = kNoObject, only = kNoObject, accepted = kNoObject;
+};
+
+void object_filter(const RTCFilterFunctionNArguments* args) {
+  const ObjectFilter* f = reinterpret_cast<const ObjectFilter*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const uint32_t o = f->objects[RTCHitN_primID(args->hit, args->N, i)];
+    if ((f->skip != kNoObject && o == f->skip) || (f->only != kNoObject && o != f->only))
+      args->valid[i] = 0;
+    else
+      const_cast<ObjectFilter*>(f)->accepted = o;
+  }
+}
+
+uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
 }  // namespace
+
+std::vector<uint32_t> triangle_components(PositionSpan positions, const uint32_t* indices, size_t index_count,
+                                          uint32_t& count) {
+  const size_t tris = index_count / 3;
+  std::vector<uint32_t> parent(tris);
+  std::iota(parent.begin(), parent.end(), 0u);
+  // The first triangle seen at each vertex position; later ones join it.
+  struct Key {
+    uint32_t x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct Hash {
+    size_t operator()(const Key& k) const {
+      return (size_t(k.x) * 73856093u) ^ (size_t(k.y) * 19349663u) ^ (size_t(k.z) * 83492791u);
+    }
+  };
+  std::unordered_map<Key, uint32_t, Hash> first;
+  first.reserve(index_count);
+  for (size_t i = 0; i < tris * 3; ++i) {
+    if (indices[i] >= positions.size()) continue;
+    const Float3& p = positions[indices[i]];
+    Key k;
+    const float x = p.x == 0 ? 0.0f : p.x, y = p.y == 0 ? 0.0f : p.y, z = p.z == 0 ? 0.0f : p.z;  // -0 is 0
+    std::memcpy(&k.x, &x, 4), std::memcpy(&k.y, &y, 4), std::memcpy(&k.z, &z, 4);
+    const auto it = first.emplace(k, uint32_t(i / 3)).first;
+    const uint32_t a = find_root(parent, it->second), b = find_root(parent, uint32_t(i / 3));
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<uint32_t> id(tris), dense(tris, kNoObject);
+  count = 0;
+  for (size_t t = 0; t < tris; ++t) {
+    const uint32_t r = find_root(parent, uint32_t(t));
+    if (dense[r] == kNoObject) dense[r] = count++;
+    id[t] = dense[r];
+  }
+  return id;
+}
 
 ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices, size_t index_count,
                                  const Camera& camera, const Light& light) {
+  return shadow_reference(positions, indices, index_count, camera, light, nullptr);
+}
+
+ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices, size_t index_count,
+                                 const Camera& camera, const Light& light, const uint32_t* triangle_objects) {
   ShadowReference out;
   double position[4];  // homogeneous (geom/scene.h)
   light_homogeneous(light, position);
@@ -77,13 +147,25 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
     }
   }
 
+  std::vector<uint32_t> objects;
+  if (triangle_objects) {
+    objects.assign(triangle_objects, triangle_objects + tri_count);
+    std::vector<uint32_t> sorted = objects;
+    std::sort(sorted.begin(), sorted.end());
+    out.object_count = uint32_t(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+    for (uint32_t& o : objects)  // kNoObject must stay free for "none"
+      if (o == kNoObject) o = kNoObject - 1;
+  } else {
+    objects = triangle_components(positions, indices, index_count, out.object_count);
+  }
+
   std::unique_ptr<RTCDeviceTy, DeviceDeleter> device(rtcNewDevice("threads=1"));
   if (!device) {
     out.error = "shadow reference: Embree device creation failed";
     return out;
   }
   std::unique_ptr<RTCSceneTy, SceneDeleter> scene(rtcNewScene(device.get()));
-  rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
   // Rays are cast in a local frame centred on the scene's box, so that a scene
   // far from the origin keeps float precision; `extent` (its half diagonal)
@@ -138,6 +220,9 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
 
   out.width = W, out.height = H;
   out.mask.assign(size_t(W) * H, 128);
+  out.pixel_class.assign(size_t(W) * H, uint8_t(ShadowClass::None));
+  out.object.assign(size_t(W) * H, kNoObject);
+  out.blocker.assign(size_t(W) * H, kNoObject);
   std::vector<uint8_t> grazing(size_t(W) * H, 0);
   RTCIntersectContext context;
   for (int y = 0; y < H; ++y)
@@ -162,22 +247,43 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
       if (dot(n, eye - P) < 0) n = n * -1.0;  // the side the camera sees
       const V3 to_light = L - P * Lw;
       const double cos_l = dot(n, normalize(to_light));
-      uint8_t& m = out.mask[size_t(y) * W + x];
+      const size_t px = size_t(y) * W + x;
+      uint8_t& m = out.mask[px];
+      const uint32_t own = objects[rh.hit.primID];
+      out.object[px] = own;
       m = 0;
-      if (std::fabs(cos_l) < 1e-4) grazing[size_t(y) * W + x] = 1;
-      if (!(cos_l > 0)) continue;
-      if (spot && Lw != 0 && dot(normalize(P - L), spot_axis) < spot_cos) continue;
+      if (std::fabs(cos_l) < 1e-4) grazing[px] = 1;
+      if (!(cos_l > 0)) {  // facing away: the object's own terminator
+        out.pixel_class[px] = uint8_t(ShadowClass::Self), out.blocker[px] = own;
+        continue;
+      }
+      if (spot && Lw != 0 && dot(normalize(P - L), spot_axis) < spot_cos) {
+        out.pixel_class[px] = uint8_t(ShadowClass::Unlit);
+        continue;
+      }
       const V3 o = P + n * offset;
       const V3 dir = Lw != 0 ? L - o : L;
-      RTCRay ray{};
-      ray.org_x = float(o.x), ray.org_y = float(o.y), ray.org_z = float(o.z);
-      ray.dir_x = float(dir.x), ray.dir_y = float(dir.y), ray.dir_z = float(dir.z);
-      ray.tnear = 0;
-      ray.tfar = Lw != 0 ? 1.0f - 1e-4f : std::numeric_limits<float>::infinity();  // the light itself is no blocker
-      ray.mask = 0xffffffffu;
-      rtcInitIntersectContext(&context);
-      rtcOccluded1(scene.get(), &context, &ray);
-      m = ray.tfar == -std::numeric_limits<float>::infinity() ? 0 : 255;
+      // Two queries: another object blocking (Cast), else the pixel's own (Self).
+      for (int pass = 0; pass < 2; ++pass) {
+        RTCRay ray{};
+        ray.org_x = float(o.x), ray.org_y = float(o.y), ray.org_z = float(o.z);
+        ray.dir_x = float(dir.x), ray.dir_y = float(dir.y), ray.dir_z = float(dir.z);
+        ray.tnear = 0;
+        ray.tfar = Lw != 0 ? 1.0f - 1e-4f : std::numeric_limits<float>::infinity();  // the light itself is no blocker
+        ray.mask = 0xffffffffu;
+        ObjectFilter f;
+        rtcInitIntersectContext(&f.context);
+        f.context.filter = object_filter;
+        f.objects = objects.data();
+        (pass == 0 ? f.skip : f.only) = own;
+        rtcOccluded1(scene.get(), &f.context, &ray);
+        if (ray.tfar == -std::numeric_limits<float>::infinity()) {
+          out.pixel_class[px] = uint8_t(pass == 0 ? ShadowClass::Cast : ShadowClass::Self);
+          out.blocker[px] = f.accepted;
+          break;
+        }
+      }
+      if (out.pixel_class[px] == uint8_t(ShadowClass::None)) out.pixel_class[px] = uint8_t(ShadowClass::Lit), m = 255;
     }
 
   out.uncertain.assign(size_t(W) * H, 0);

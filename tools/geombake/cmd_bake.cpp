@@ -382,11 +382,11 @@ std::vector<std::string> split_jobs_flag(const std::vector<std::string>& argv) {
 
 int run_bake(const std::vector<std::string>& argv) {
   cli::Args args(split_jobs_flag(argv),
-            {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
-             "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights", "--one-sided-closed",
-             "-q", "--quiet", "--force", "--allow-outside-uris"},
-            {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
-             "--md3-frame", "--max-triangles", "--max-memory", "--timeout", "--list", "-r"});
+                 {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
+                  "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights",
+                  "--one-sided-closed", "-q", "--quiet", "--force", "--allow-outside-uris"},
+                 {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
+                  "--md3-frame", "--max-triangles", "--max-memory", "--timeout", "--list", "-r"});
   if (args.has("--help") || args.has("-h")) {
     std::printf("geombake %s\n", GEOM_VERSION);
     std::fputs(kBakeHelp, stdout);

@@ -36,8 +36,8 @@ const char* kInfoHelp =
 
 int run_info(const std::vector<std::string>& argv) {
   cli::Args args(argv, {"--json", "-v", "--help", "-h", "--allow-outside-uris"},
-            {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles",
-             "--max-memory", "--timeout"});
+                 {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles",
+                  "--max-memory", "--timeout"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kInfoHelp, stdout);
     return 0;

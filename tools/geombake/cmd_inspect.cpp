@@ -45,7 +45,8 @@ int run_inspect(const std::vector<std::string>& argv) {
   int failed = 0;
   for (const std::string& path : args.positional()) {
     geom::baked::File file;
-    if (!file.map(path)) {
+    // load(), not map(): a mapped file that shrinks under us would be a SIGBUS.
+    if (!file.load(path)) {
       std::fprintf(stderr, "Error: %s\n", file.error().c_str());
       if (json)
         std::printf("{\"file\":%s,\"ok\":false,\"error\":%s}\n", json_quote(path).c_str(),

@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <mutex>
 #include <new>
 #include <thread>
@@ -20,16 +21,18 @@ thread_local Budget* t_budget = nullptr;
 
 // Charges `p` (just allocated) to the thread's budget; false (and `p` freed)
 // if the budget refuses it.
+// Never while an exception unwinds the stack: destructors allocate too
+// (nlohmann::json's does), and a throw from one would end the process.
 inline bool charge(void* p) {
   Budget* b = t_budget;
   if (!b) return true;
-  if (b->cancelled.load(std::memory_order_relaxed)) {
+  if (b->cancelled.load(std::memory_order_relaxed) && std::uncaught_exceptions() == 0) {
     std::free(p);
     return false;
   }
   const int64_t size = int64_t(malloc_usable_size(p));
   const int64_t used = b->used.fetch_add(size, std::memory_order_relaxed) + size;
-  if (b->limit && used > int64_t(b->limit)) {
+  if (b->limit && used > int64_t(b->limit) && std::uncaught_exceptions() == 0) {
     b->used.fetch_sub(size, std::memory_order_relaxed);
     b->exceeded.store(true, std::memory_order_relaxed);
     std::free(p);

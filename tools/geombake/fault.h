@@ -11,6 +11,10 @@
 // input's --timeout expired) throws at its next allocation, so abandoned work
 // unwinds and gives its memory back instead of running on.
 // Memory that libraries take with malloc() directly (libzip) is not counted.
+// No allocation is refused while an exception unwinds the stack (destructors
+// allocate too); one that a destructor makes on the normal path, over the
+// limit, would still end the process (std::terminate): libraries whose
+// destructors allocate (nlohmann::json's flattening one) are the known risk.
 #pragma once
 #include <atomic>
 #include <cstdint>
