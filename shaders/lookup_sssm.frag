@@ -16,16 +16,16 @@
 // nearest depth sample's comparison stands, as in lookup_edsm.frag.
 uniform mat4 u_light_matrix;
 uniform sampler2DShadow u_shadow_map;  // comparison sampler, gathered
-uniform sampler2D u_edge_map;          // RGBA32F: the silhouette point (offset from the cell's centre), edge depth
+uniform usampler2D u_edge_map;         // RG32UI: the silhouette point (offset from the cell's centre, 2 x snorm16), edge depth bits
 uniform int u_sssm_paper;              // 0: with the deviation above (default), 1: the paper's lookup
 
 float edge_depth = 0.0;  // the farthest edge among the cells read
 
 vec2 point_at(ivec2 cell, ivec2 size) {
   if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, size))) return vec2(0.0);
-  vec4 t = texelFetch(u_edge_map, cell, 0);
-  edge_depth = max(edge_depth, t.b);
-  return t.rg;
+  uvec2 t = texelFetch(u_edge_map, cell, 0).rg;
+  edge_depth = max(edge_depth, uintBitsToFloat(t.g));
+  return 0.5 * unpackSnorm2x16(t.r);
 }
 
 // A pseudo-angle in [0, 4) increasing counter-clockwise (the "diamond angle").

@@ -16,7 +16,7 @@ flat in vec4 f_segment;
 flat in vec2 f_depth;
 uniform float u_map_size;
 uniform sampler2D u_depth;  // the light's depth map, read without comparison
-layout(location = 0) out vec4 o_point;
+layout(location = 0) out uvec2 o_point;
 
 // The segment's crossing with the diagonal c + s d (|s| <= 0.5), as segment parameter; -1 when none.
 float crossing(vec2 A, vec2 ab, vec2 c, vec2 d) {
@@ -55,6 +55,7 @@ void main() {
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(t + ivec2(x, y), ivec2(0), top), 0).r);
   if (z_edge > z_far + 1e-5) discard;
-  o_point = vec4(clamp(p - c, vec2(-0.5), vec2(0.5)), z_edge, 1.0);
+  // r: the offset, times 2 as two snorm16 (1 / 65534 texel); g: the edge depth's bits.
+  o_point = uvec2(packSnorm2x16(clamp(2.0 * (p - c), vec2(-1.0), vec2(1.0))), floatBitsToUint(z_edge));
   gl_FragDepth = clamp(z_edge, 0.0, 1.0);
 }

@@ -16,7 +16,7 @@ bool sssm_passes(Frame& f) {
   f.light_frame = light_frame(s, f.light);
   const glm::mat4 light_clip = f.light_frame.clip();
   if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
-  ensure_edge_map(s, n, GL_RGBA32F);  // point offset, edge depth, written
+  ensure_edge_map(s, n, GL_RG32UI);  // the point (2 x snorm16), the edge depth's bits
   GLuint p = program(s.programs, {"sssm_edges.vert", "sssm_edges.geom", "sssm_edges.frag"}, f.error);
   if (!p) return false;
   set(p, "u_matrix", light_clip);
@@ -25,8 +25,8 @@ bool sssm_passes(Frame& f) {
   f.timer.begin("silhouette map");
   glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
   glViewport(0, 0, n, n);
-  const float centre[4] = {0, 0, 0, 0};  // the default point: the cell's centre
-  glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, centre);
+  const GLuint centre[4] = {0, 0, 0, 0};  // the default point: the cell's centre; no edge depth
+  glClearNamedFramebufferuiv(s.edge_map.fbo, GL_COLOR, 0, centre);
   glClearDepth(1.0);
   glClear(GL_DEPTH_BUFFER_BIT);
   glBindTextureUnit(1, s.shadow_map.depth);
