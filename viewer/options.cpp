@@ -23,7 +23,8 @@ namespace {
 const char* kUsage =
     "Usage: geomview [FILE] [options]   (FILE: a baked .gbake container, or a mesh or scene file baked in\n"
     "                                    process; the bundled default scene when absent)\n"
-    "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform, or all\n"
+    "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform esm-exact sssm\n"
+    "                             edsm-soft pcf-soft, or all\n"
     "  --compare NAME,NAME[,..]   a grid of 2 to 12 techniques from one camera and light, each panel labelled\n"
     "                             with technique, map size, pass time and error (or all); -o grid.png headless\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"
@@ -35,6 +36,7 @@ const char* kUsage =
     "                             400x300)\n"
     "  -o FILE.png                output (several techniques: -o DIR, one DIR/NAME.png per technique)\n"
     "  --output color|mask        mask: 8-bit grey, 255 lit, 0 shadow, 128 no geometry\n"
+    "  --light-radius R           edsm-soft, pcf-soft: the light's disc (world units; radians for a sun; default 0)\n"
     "  --frames N                 render N frames and print the time of each pass\n"
     "  --inspect                  overlay silhouette quads, topology problems, focus body, with a legend\n"
     "  --error                    measure the error against the ray-cast reference (printed; in the HUD)\n"
@@ -123,7 +125,7 @@ int parse_options(int argc, char** argv, Options& o) {
                  {"--help", "-h", "--inspect", "--window", "--hud", "--error"},
                  {"--technique", "--compare", "--eye", "--target", "--up", "--fovy", "--near", "--far", "--light",
                   "--spot", "--shadow-map-size", "--size", "-o", "--output", "--frames", "--shaders", "--up-axis",
-                  "--script", "--screenshot"});
+                  "--script", "--screenshot", "--light-radius"});
   if (!args.error().empty()) return fail(args.error() + " (see geomview --help)"), cli::kExitUsage;
   if (args.has("--help") || args.has("-h")) {
     std::printf(kUsage, default_shaders().c_str());
@@ -145,6 +147,8 @@ int parse_options(int argc, char** argv, Options& o) {
   if (output != "color" && output != "mask") return fail("--output must be color or mask, not '" + output + "'");
   o.settings.output = output == "mask" ? render::Output::Mask : render::Output::Color;
   o.settings.shadow_map_size = std::atoi(args.get("--shadow-map-size", "1024").c_str());
+  o.settings.light_radius = float(std::atof(args.get("--light-radius", "0").c_str()));
+  if (!(o.settings.light_radius >= 0) || o.settings.light_radius > 1e6) return fail("--light-radius must be >= 0");
   if (o.settings.shadow_map_size < 16 || o.settings.shadow_map_size > 16384)
     return fail("--shadow-map-size must be within 16..16384");
   o.frames = std::atoi(args.get("--frames", "1").c_str());
