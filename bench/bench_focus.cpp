@@ -23,8 +23,8 @@ using namespace geom;
 namespace {
 
 struct Scenario {
-  std::vector<FocusCamera> cameras;
-  FocusLight light;
+  std::vector<CameraMatrices> cameras;
+  Light light;
   FocusBox box{{-100, 0, -100}, {100, 20, 100}};
 };
 
@@ -35,12 +35,12 @@ Scenario make(int type) {
     double eye[3] = {60 * std::cos(a), 3, 60 * std::sin(a)};
     double target[3] = {eye[0] - 10 * std::sin(a), 1.5, eye[2] + 10 * std::cos(a)};
     double up[3] = {0, 1, 0};
-    s.cameras.push_back(focus_camera_look_at(eye, target, up, 60, 16.0 / 9.0, 0.1, 500));
+    s.cameras.push_back(camera_look_at(eye, target, up, 60, 16.0 / 9.0, 0.1, 500));
   }
-  s.light.type = FocusLightType(type);
+  s.light.type = LightType(type);
   double pos[3] = {30, 60, 20}, dir[3] = {-0.4, -1, -0.3};
   for (int k = 0; k < 3; ++k) s.light.position[k] = pos[k], s.light.direction[k] = dir[k];
-  s.light.spot_angle = 0.8;
+  s.light.outer_cone = 0.8;
   return s;
 }
 

@@ -74,16 +74,16 @@ struct HalfSpace {  // n.x <= d
 struct FrameSetup {
   double eye[3], target[3], up[3];
   double fovy = 60, aspect = 1.5, near_d = 0.1, far_d = 100;
-  FocusLight light;
+  Light light;
   FocusBox box;
-  FocusCamera camera() const { return focus_camera_look_at(eye, target, up, fovy, aspect, near_d, far_d); }
+  CameraMatrices camera() const { return camera_look_at(eye, target, up, fovy, aspect, near_d, far_d); }
 };
 
 FrameSetup basic_setup() {
   FrameSetup s;
   double eye[3] = {0, 2, 5}, target[3] = {0, 1.5, -5}, up[3] = {0, 1, 0};
   for (int k = 0; k < 3; ++k) s.eye[k] = eye[k], s.target[k] = target[k], s.up[k] = up[k];
-  s.light.type = FocusLightType::Directional;
+  s.light.type = LightType::Directional;
   s.light.direction[0] = 0.3, s.light.direction[1] = -1, s.light.direction[2] = 0.2;
   s.box = {{-10, 0, -20}, {10, 5, 0}};
   return s;
@@ -92,7 +92,7 @@ FrameSetup basic_setup() {
 // Independent membership tests.
 struct Checker {
   FrameSetup s;
-  FocusCamera cam;
+  CameraMatrices cam;
   double pv[16];
   std::vector<HalfSpace> v_planes, s_planes, l_planes, h_planes;
   P3 eye, view_dir, light_pos, towards_light;
@@ -118,7 +118,7 @@ struct Checker {
     }
     eye = {s.eye[0], s.eye[1], s.eye[2]};
     view_dir = unit(P3{s.target[0], s.target[1], s.target[2]} - eye);
-    directional = s.light.type == FocusLightType::Directional;
+    directional = s.light.type == LightType::Directional;
     light_pos = {s.light.position[0], s.light.position[1], s.light.position[2]};
     towards_light = unit(P3{s.light.direction[0], s.light.direction[1], s.light.direction[2]}) * -1;
     // Tolerance: a relative 1e-10 of the coordinates (far from the origin)
@@ -172,12 +172,12 @@ struct Checker {
     return true;
   }
   bool in_spot(P3 p, double slack) const {  // the spot's square pyramid contains this cone
-    if (s.light.type != FocusLightType::Spot) return true;
+    if (s.light.type != LightType::Spot) return true;
     P3 axis = towards_light * -1;
     P3 d = p - light_pos;
     double along = dot(d, axis);
     double side = norm(d - axis * along);
-    double angle = std::fmin(s.light.spot_angle, 89.9 * M_PI / 180);
+    double angle = std::fmin(s.light.outer_cone, 89.9 * M_PI / 180);
     return side <= std::tan(angle) * along * slack + tol && along >= r->light_near - tol;
   }
   bool in_v(P3 p) const { return inside(v_planes, p, tol); }
@@ -207,7 +207,8 @@ struct Checker {
     std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
     double far_s = 0;
     for (int i = 0; i < 8; ++i) {
-      P3 c{i & 1 ? s.box.max[0] : s.box.min[0], i & 2 ? s.box.max[1] : s.box.min[1], i & 4 ? s.box.max[2] : s.box.min[2]};
+      P3 c{i & 1 ? s.box.max[0] : s.box.min[0], i & 2 ? s.box.max[1] : s.box.min[1],
+           i & 4 ? s.box.max[2] : s.box.min[2]};
       far_s = std::fmax(far_s, dot(c - eye, view_dir));
     }
     double f = std::fmin(s.far_d, far_s);
@@ -349,7 +350,7 @@ TEST(Focus, RandomFramesEveryLightAndMethod) {
     s.near_d = std::pow(10.0, -3 + 3 * u01(rng));
     s.far_d = iter % 7 == 0 ? HUGE_VAL : s.near_d * std::pow(10.0, 1 + 4 * u01(rng));
     int type = iter % 3;
-    s.light.type = FocusLightType(type);
+    s.light.type = LightType(type);
     P3 dir = unit(P3{u(rng), u(rng), u(rng)});
     s.light.direction[0] = dir.x, s.light.direction[1] = dir.y, s.light.direction[2] = dir.z;
     P3 lp = centre + P3{u(rng), u(rng), u(rng)} * (norm(half) * 3);
@@ -358,7 +359,7 @@ TEST(Focus, RandomFramesEveryLightAndMethod) {
       P3 aim = unit(centre - lp + P3{u(rng), u(rng), u(rng)} * norm(half) * 0.5);
       s.light.direction[0] = aim.x, s.light.direction[1] = aim.y, s.light.direction[2] = aim.z;
     }
-    s.light.spot_angle = 0.1 + 1.3 * u01(rng);
+    s.light.outer_cone = 0.1 + 1.3 * u01(rng);
     s.light.range = iter % 5 == 0 ? norm(half) * 4 : 0;
     for (FocusMethod m : kMethods) {
       FocusResult r = run(s, m);
@@ -403,7 +404,7 @@ TEST(Focus, DirectionalParallelToView) {
 
 TEST(Focus, PointLightBehindViewerIsInvertedAndShifts) {
   FrameSetup s = basic_setup();
-  s.light.type = FocusLightType::Point;
+  s.light.type = LightType::Point;
   s.light.position[0] = 1, s.light.position[1] = 4, s.light.position[2] = 15;  // behind the eye (z = 5)
   std::mt19937 rng(3);
   FocusResult r = run(s, FocusMethod::Psm);
@@ -420,7 +421,7 @@ TEST(Focus, PointLightOnCameraPlaneIsDirectional) {
   P3 side{1, 0, 0};
   P3 up = cross(side, v);
   P3 l = P3{0, 2, 5} + side * 3 + up * 2;  // "miner's lamp"
-  s.light.type = FocusLightType::Point;
+  s.light.type = LightType::Point;
   s.light.position[0] = l.x, s.light.position[1] = l.y, s.light.position[2] = l.z;
   std::mt19937 rng(4);
   for (FocusMethod m : kMethods) {
@@ -436,7 +437,7 @@ TEST(Focus, DirectionalAcrossViewStaysDirectional) {
   FrameSetup s = basic_setup();
   P3 v = unit(P3{s.target[0] - s.eye[0], s.target[1] - s.eye[1], s.target[2] - s.eye[2]});
   P3 d = unit(cross(v, P3{1, 0, 0}));  // perpendicular to the view direction
-  if (d.y > 0) d = d * -1;              // shining downwards
+  if (d.y > 0) d = d * -1;             // shining downwards
   s.light.direction[0] = d.x, s.light.direction[1] = d.y, s.light.direction[2] = d.z;
   std::mt19937 rng(13);
   for (FocusMethod m : kMethods) {
@@ -449,7 +450,7 @@ TEST(Focus, DirectionalAcrossViewStaysDirectional) {
 
 TEST(Focus, PointLightInsideViewNeedsCubeMap) {
   FrameSetup s = basic_setup();
-  s.light.type = FocusLightType::Point;
+  s.light.type = LightType::Point;
   s.light.position[0] = 0, s.light.position[1] = 1, s.light.position[2] = -8;  // among the receivers
   std::mt19937 rng(5);
   for (FocusMethod m : kMethods) {
@@ -459,9 +460,9 @@ TEST(Focus, PointLightInsideViewNeedsCubeMap) {
     check_laws(s, r, rng, focus_method_name(m));
   }
   // A spot light there is fine: its frustum is one map.
-  s.light.type = FocusLightType::Spot;
+  s.light.type = LightType::Spot;
   s.light.position[1] = 4;
-  s.light.spot_angle = 1.0;
+  s.light.outer_cone = 1.0;
   s.light.direction[0] = 0, s.light.direction[1] = -1, s.light.direction[2] = -0.3;
   for (FocusMethod m : kMethods) {
     FocusResult r = run(s, m);
@@ -477,7 +478,7 @@ TEST(Focus, ExtremeNearAndFarPlanes) {
       for (int type = 0; type < 3; ++type) {
         FrameSetup s = basic_setup();
         s.near_d = near_d, s.far_d = far_d;
-        s.light.type = FocusLightType(type);
+        s.light.type = LightType(type);
         s.light.position[0] = 5, s.light.position[1] = 20, s.light.position[2] = -5;
         s.light.direction[0] = -0.2, s.light.direction[1] = -1, s.light.direction[2] = -0.1;
         for (FocusMethod m : kMethods) {
@@ -498,7 +499,7 @@ TEST(Focus, SceneFarFromOrigin) {
       FrameSetup s = basic_setup();
       for (double* p : {s.eye, s.target, s.light.position}) p[0] += offset, p[2] -= offset;
       s.box.min[0] += offset, s.box.max[0] += offset, s.box.min[2] -= offset, s.box.max[2] -= offset;
-      s.light.type = FocusLightType(type);
+      s.light.type = LightType(type);
       s.light.position[1] += 25;
       s.light.direction[0] = 0.1, s.light.direction[1] = -1, s.light.direction[2] = -0.4;
       for (FocusMethod m : kMethods) {
@@ -513,7 +514,7 @@ TEST(Focus, EmptyIntersectionIsStated) {
   FrameSetup s = basic_setup();
   s.box = {{-10, 0, 20}, {10, 5, 40}};  // entirely behind the camera
   for (int type = 0; type < 3; ++type) {
-    s.light.type = FocusLightType(type);
+    s.light.type = LightType(type);
     s.light.position[1] = 30;
     for (FocusMethod m : kMethods) {
       FocusResult r = run(s, m);
@@ -629,7 +630,7 @@ TEST(Focus, CastersAndReceiversTighten) {
 TEST(Focus, MatrixOnlyMatchesWithFaces) {
   FrameSetup s = basic_setup();
   for (int type = 0; type < 3; ++type) {
-    s.light.type = FocusLightType(type);
+    s.light.type = LightType(type);
     s.light.position[1] = 12;
     for (FocusMethod m : kMethods) {
       FocusOptions with, without;
@@ -651,10 +652,10 @@ TEST(Focus, MatrixOnlyMatchesWithFaces) {
 
 TEST(Focus, MatricesFromEngineFloatsMatchLookAt) {
   FrameSetup s = basic_setup();
-  FocusCamera c = s.camera();
+  CameraMatrices c = s.camera();
   float view[16], proj[16];
   for (int i = 0; i < 16; ++i) view[i] = float(c.view[i]), proj[i] = float(c.projection[i]);
-  FocusCamera f = focus_camera_from_matrices(view, proj);
+  CameraMatrices f = camera_from_matrices(view, proj);
   FocusResult a, b;
   FocusOptions opt;
   compute_focus(c, s.light, s.box, opt, a);
@@ -676,10 +677,13 @@ TEST(Focus, MatricesFromEngineFloatsMatchLookAt) {
   gl.type = LightType::Spot;
   gl.position[1] = 7;
   gl.outer_cone = 0.5f;
-  FocusLight fl = focus_light_from(gl);
-  EXPECT_EQ(FocusLightType::Spot, fl.type);
+  // An imported light (geom/scene.h) is compute_focus's input as it is: no conversion.
+  const Light& fl = gl;
+  EXPECT_EQ(LightType::Spot, fl.type);
   EXPECT_DOUBLE_EQ(7, fl.position[1]);
-  EXPECT_NEAR(0.5, fl.spot_angle, 1e-7);
+  EXPECT_NEAR(0.5, fl.outer_cone, 1e-7);
+  FocusResult spot;
+  EXPECT_TRUE(compute_focus(c, fl, s.box, opt, spot)) << spot.reason;
 }
 
 // Cube faces: every direction, seams and corners included, falls on exactly
@@ -743,12 +747,24 @@ TEST(CubeFaces, MatchOpenGLFaceTable) {
     int f = focus_cube_face_of(d);
     double rx = d[0], ry = d[1], rz = d[2], sc, tc, ma;
     switch (f) {
-      case 0: sc = -rz, tc = -ry, ma = rx; break;
-      case 1: sc = rz, tc = -ry, ma = rx; break;
-      case 2: sc = rx, tc = rz, ma = ry; break;
-      case 3: sc = rx, tc = -rz, ma = ry; break;
-      case 4: sc = rx, tc = -ry, ma = rz; break;
-      default: sc = -rx, tc = -ry, ma = rz; break;
+      case 0:
+        sc = -rz, tc = -ry, ma = rx;
+        break;
+      case 1:
+        sc = rz, tc = -ry, ma = rx;
+        break;
+      case 2:
+        sc = rx, tc = rz, ma = ry;
+        break;
+      case 3:
+        sc = rx, tc = -rz, ma = ry;
+        break;
+      case 4:
+        sc = rx, tc = -ry, ma = rz;
+        break;
+      default:
+        sc = -rx, tc = -ry, ma = rz;
+        break;
     }
     double c[4];
     apply(m[f], P3{d[0], d[1], d[2]}, 1, c);
@@ -772,8 +788,8 @@ TEST(FocusCommand, PrintsJsonAndRejectsBadInput) {
   ASSERT_EQ(0, std::system((geombake + " focus " + good + " > " + out + " 2>&1").c_str()));
   std::ifstream in(out);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (const char* key : {"\"method\": \"lispsm\"", "\"fallback\": null", "\"light_kind\": \"point\"", "\"camera_shift\"",
-                          "\"focus_vertices\"", "\"matrix\""})
+  for (const char* key : {"\"method\": \"lispsm\"", "\"fallback\": null", "\"light_kind\": \"point\"",
+                          "\"camera_shift\"", "\"focus_vertices\"", "\"matrix\""})
     EXPECT_NE(std::string::npos, text.find(key)) << key << " in " << text;
   std::ofstream(bad) << R"({"camera": {"eye": [0,2,5]}, "light": {"type": "point"}})";
   int rc = std::system((geombake + " focus " + bad + " > " + out + " 2>&1").c_str());
@@ -803,9 +819,9 @@ TEST(FocusFaces, HullPathClosesAroundTJunctions) {
   };
   V3 c[8];
   for (int i = 0; i < 8; ++i) c[i] = V3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  quad(c[0], c[2], c[3], c[1]);                                               // z = 0
-  quad(c[4], c[5], V3(0.5, 1, 1), V3(0.5, 0, 1));                             // z = 1, left half (wrong on purpose:
-  quad(V3(0.5, 0, 1), V3(0.5, 1, 1), c[7], c[6]);                             // two halves of one face)
+  quad(c[0], c[2], c[3], c[1]);                    // z = 0
+  quad(c[4], c[5], V3(0.5, 1, 1), V3(0.5, 0, 1));  // z = 1, left half (wrong on purpose:
+  quad(V3(0.5, 0, 1), V3(0.5, 1, 1), c[7], c[6]);  // two halves of one face)
   quad(c[0], c[1], c[5], c[4]);
   quad(c[2], c[6], c[7], c[3]);
   quad(c[0], c[4], c[6], c[2]);

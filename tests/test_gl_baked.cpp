@@ -1,14 +1,13 @@
 // geomview drawing a baked container (geom/bake.h -> geom/baked_writer.h ->
-// viewer::create_state_baked) instead of baking in process: the buffers as they
+// render::create_state_baked) instead of baking in process: the buffers as they
 // lie in the file give the exact shadow-volume mask (the law of
 // test_gl_shadow_volumes), and hostile containers are refused with a message.
-#include "test_gl_common.h"
-
 #include "geom/bake.h"
 #include "geom/baked_writer.h"
+#include "gl_fixtures.h"
 
 using namespace gltest;
-using viewer::Technique;
+using render::Technique;
 
 namespace {
 
@@ -31,39 +30,30 @@ std::vector<unsigned char> baked_bytes(const geom::Scene& s, const geom::BakeOpt
   return bytes;
 }
 
-viewer::View view() {
-  viewer::View v;
-  v.eye = {4, 5, 7};
-  v.target = {0, 0.7f, 0};
-  v.fovy_deg = 50;
-  v.near_plane = 0.1f;
-  v.far_plane = 100;
-  v.width = 160, v.height = 120;
-  return v;
-}
+geom::Camera view() { return camera({4, 5, 7}, {0, 0.7f, 0}, 50, 0.1f, 100, 160, 120); }
 
 TEST(GlBaked, VolumesFromTheFileMatchTheReference) {
   ASSERT_NE(context(), nullptr);
   const std::vector<unsigned char> bytes = baked_bytes(scene());
   geom::Scene from_file;
   std::string error;
-  auto state = viewer::create_state_baked(bytes.data(), bytes.size(), GEOMVIEW_SHADER_DIR, from_file, error);
+  auto state = render::create_state_baked(bytes.data(), bytes.size(), GEOM_SHADER_DIR, from_file, error);
   ASSERT_TRUE(state) << error;
   EXPECT_EQ(from_file.triangle_count(), scene().triangle_count());
-  viewer::LightSetup point, dir;
-  point.position = glm::vec4(-1.0f, 5.0f, -2.0f, 1);
-  dir.position = glm::vec4(0.5f, 1.0f, -0.3f, 0);
-  for (const viewer::LightSetup& l : {point, dir})
+  geom::Light point, dir;
+  point = point_light({-1.0f, 5.0f, -2.0f});
+  dir = sun({0.5f, 1.0f, -0.3f});
+  for (const geom::Light& l : {point, dir})
     for (Technique t : {Technique::Sv, Technique::SvZFail, Technique::SvZPass}) {
       const Comparison c = render_and_compare(*state, from_file, view(), l, t, 256);
-      SCOPED_TRACE(viewer::technique_name(t));
+      SCOPED_TRACE(render::technique_name(t));
       EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain;
       EXPECT_GT(c.shadowed, 300u);
     }
   // The shadow-map techniques that read the file's ESM quads and adjacency run too.
   for (Technique t : {Technique::Esm, Technique::Edsm}) {
     const Comparison c = render_and_compare(*state, from_file, view(), point, t, 1024);
-    EXPECT_LT(c.error(), 0.01) << viewer::technique_name(t);
+    EXPECT_LT(c.error(), 0.01) << render::technique_name(t);
   }
 }
 
@@ -83,23 +73,23 @@ TEST(GlBaked, ExactVolumesOfDeclaredLights) {
   const std::vector<unsigned char> bytes = baked_bytes(s);
   geom::Scene from_file;
   std::string error;
-  auto baked = viewer::create_state_baked(bytes.data(), bytes.size(), GEOMVIEW_SHADER_DIR, from_file, error);
+  auto baked = render::create_state_baked(bytes.data(), bytes.size(), GEOM_SHADER_DIR, from_file, error);
   ASSERT_TRUE(baked) << error;
-  auto in_process = viewer::create_state(s, GEOMVIEW_SHADER_DIR, error);
+  auto in_process = render::create_state(s, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(in_process) << error;
-  viewer::LightSetup l0, l1;
-  l0.position = glm::vec4(-1.0f, 5.0f, -2.0f, 1);
-  l1.position = glm::vec4(0.5f, 1.0f, -0.3f, 0);
-  for (viewer::State* state : {baked.get(), in_process.get()})
-    for (const viewer::LightSetup& l : {l0, l1})
+  geom::Light l0, l1;
+  l0 = point_light({-1.0f, 5.0f, -2.0f});
+  l1 = gltest::sun({0.5f, 1.0f, -0.3f});
+  for (render::State* state : {baked.get(), in_process.get()})
+    for (const geom::Light& l : {l0, l1})
       for (Technique t : {Technique::SvZPass, Technique::SvZFail}) {
         const Comparison c = render_and_compare(*state, s, view(), l, t, 256);
         EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain;
-        viewer::FrameSettings fs;
+        render::FrameSettings fs;
         fs.technique = t;
         geom::PngImage image;
-        std::vector<viewer::PassTime> times;
-        ASSERT_TRUE(viewer::render(*state, view(), l, fs, image, times, error)) << error;
+        std::vector<render::PassTime> times;
+        ASSERT_TRUE(render::render(*state, view(), l, fs, image, times, error)) << error;
         bool exact = false;
         for (const auto& pt : times) exact = exact || pt.pass.find("exact") != std::string::npos;
         EXPECT_TRUE(exact) << "the declared light's exact volume should be drawn";
@@ -114,13 +104,13 @@ TEST(GlBaked, MissingBuffersAreNamed) {
   const std::vector<unsigned char> bytes = baked_bytes(scene(), options);
   geom::Scene from_file;
   std::string error;
-  auto state = viewer::create_state_baked(bytes.data(), bytes.size(), GEOMVIEW_SHADER_DIR, from_file, error);
+  auto state = render::create_state_baked(bytes.data(), bytes.size(), GEOM_SHADER_DIR, from_file, error);
   ASSERT_TRUE(state) << error;
-  viewer::FrameSettings fs;
+  render::FrameSettings fs;
   fs.technique = Technique::Sv;
   geom::PngImage image;
-  std::vector<viewer::PassTime> times;
-  EXPECT_FALSE(viewer::render(*state, view(), viewer::LightSetup(), fs, image, times, error));
+  std::vector<render::PassTime> times;
+  EXPECT_FALSE(render::render(*state, view(), geom::Light(), fs, image, times, error));
   EXPECT_NE(error.find("no buffers for sv"), std::string::npos) << error;
 }
 
@@ -131,20 +121,20 @@ TEST(GlBaked, HostileContainersAreRefused) {
   std::string error;
   // Every truncation is refused (the reader checks the length and checksums).
   for (size_t n = 0; n < bytes.size(); n += 1 + n / 7) {
-    EXPECT_FALSE(viewer::create_state_baked(bytes.data(), n, GEOMVIEW_SHADER_DIR, from_file, error)) << n;
+    EXPECT_FALSE(render::create_state_baked(bytes.data(), n, GEOM_SHADER_DIR, from_file, error)) << n;
     EXPECT_FALSE(error.empty());
   }
   // A well-formed file whose index points outside the positions.
   std::vector<geom::BakedSection> sections;
   const std::vector<float> p = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   const std::vector<uint32_t> bad = {0, 1, 7};
-  sections.push_back(geom::make_baked_section(geom::baked::SectionType::Positions, geom::baked::Format::F32x3, 12,
-                                              "positions", p));
+  sections.push_back(
+      geom::make_baked_section(geom::baked::SectionType::Positions, geom::baked::Format::F32x3, 12, "positions", p));
   sections.push_back(
       geom::make_baked_section(geom::baked::SectionType::Indices, geom::baked::Format::U32, 4, "indices", bad));
   std::vector<unsigned char> file;
   ASSERT_TRUE(geom::serialize_baked(sections, file, error)) << error;
-  EXPECT_FALSE(viewer::create_state_baked(file.data(), file.size(), GEOMVIEW_SHADER_DIR, from_file, error));
+  EXPECT_FALSE(render::create_state_baked(file.data(), file.size(), GEOM_SHADER_DIR, from_file, error));
   EXPECT_NE(error.find("out of range"), std::string::npos) << error;
   // Adjacency indices out of range, everything else valid.
   sections[1] = geom::make_baked_section(geom::baked::SectionType::Indices, geom::baked::Format::U32, 4, "indices",
@@ -152,7 +142,7 @@ TEST(GlBaked, HostileContainersAreRefused) {
   sections.push_back(geom::make_baked_section(geom::baked::SectionType::AdjacencyIndices, geom::baked::Format::U32, 4,
                                               "adjacency", std::vector<uint32_t>{0, 9, 1, 2, 2, 0}));
   ASSERT_TRUE(geom::serialize_baked(sections, file, error)) << error;
-  EXPECT_FALSE(viewer::create_state_baked(file.data(), file.size(), GEOMVIEW_SHADER_DIR, from_file, error));
+  EXPECT_FALSE(render::create_state_baked(file.data(), file.size(), GEOM_SHADER_DIR, from_file, error));
   EXPECT_NE(error.find("adjacency index"), std::string::npos) << error;
 }
 

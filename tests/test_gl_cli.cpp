@@ -3,6 +3,8 @@
 // compared with the ray-cast reference of the same setup; multi-technique runs
 // into a folder; `Error:` and a non-zero exit on bad flags and bad files.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -10,11 +12,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "geom/png.h"
 #include "geom/shadow_reference.h"
+#include "gl_fixtures.h"
 
 namespace {
 
@@ -99,30 +100,27 @@ TEST(GlCli, MaskMatchesTheReference) {
   const std::vector<uint32_t> idx = obj_indices();
   struct Case {
     std::string flags;
-    geom::ReferenceLight light;
+    geom::Light light;
   };
   std::vector<Case> cases(3);
   cases[0].flags = "--light -2,5,-3,1";
-  cases[0].light.position[0] = -2, cases[0].light.position[1] = 5, cases[0].light.position[2] = -3;
+  cases[0].light = gltest::point_light({-2, 5, -3});
   cases[1].flags = "--light -0.5,1,-0.8,0";
-  cases[1].light.position[0] = -0.5f, cases[1].light.position[1] = 1, cases[1].light.position[2] = -0.8f;
-  cases[1].light.position[3] = 0;
+  cases[1].light = gltest::sun({-0.5f, 1, -0.8f});
   cases[2].flags = "--light 2,5,2,1 --spot -2,-5,-2,30";
-  cases[2].light.position[0] = 2, cases[2].light.position[1] = 5, cases[2].light.position[2] = 2;
-  cases[2].light.spot = true;
-  cases[2].light.spot_direction[0] = -2, cases[2].light.spot_direction[1] = -5, cases[2].light.spot_direction[2] = -2;
-  cases[2].light.spot_angle_deg = 30;
-  geom::ReferenceCamera camera;
+  cases[2].light = gltest::spot_light({2, 5, 2}, {-2, -5, -2}, 30);
+  geom::Camera camera;
   const float eye[3] = {3, 4, 6}, target[3] = {0, 0.5f, 0}, up[3] = {0, 1, 0};
   for (int k = 0; k < 3; ++k) camera.eye[k] = eye[k], camera.target[k] = target[k], camera.up[k] = up[k];
   camera.fovy_deg = 45, camera.near_plane = 0.1f, camera.far_plane = 50, camera.width = 120, camera.height = 90;
   for (const Case& c : cases) {
     const fs::path png = temp.dir / "mask.png";
     std::string out;
-    ASSERT_EQ(run(obj.string() + " --technique sv --eye 3,4,6 --target 0,0.5,0 --up 0,1,0 --fovy 45 --near 0.1 --far 50 " +
-                      c.flags + " --size 120x90 --output mask -o " + png.string(),
-                  &out),
-              0)
+    ASSERT_EQ(
+        run(obj.string() + " --technique sv --eye 3,4,6 --target 0,0.5,0 --up 0,1,0 --fovy 45 --near 0.1 --far 50 " +
+                c.flags + " --size 120x90 --output mask -o " + png.string(),
+            &out),
+        0)
         << out;
     geom::PngImage mask;
     std::string error;
@@ -175,8 +173,9 @@ TEST(GlCli, ErrorsAreReported) {
   const fs::path obj = temp.dir / "scene.obj";
   std::ofstream(obj) << kObj;
   const std::string o = " -o " + (temp.dir / "x.png").string();
-  const char* bad[] = {" --technique nope", " --light 1,2,3", " --light 1,2,3,0 --spot 0,-1,0,30", " --size 0x10",
-                       " --fovy 200", " --near 5 --far 1", " --shadow-map-size 3", " --output depth", " --eye 0,0,0 --target 0,0,0"};
+  const char* bad[] = {" --technique nope",    " --light 1,2,3",  " --light 1,2,3,0 --spot 0,-1,0,30",
+                       " --size 0x10",         " --fovy 200",     " --near 5 --far 1",
+                       " --shadow-map-size 3", " --output depth", " --eye 0,0,0 --target 0,0,0"};
   for (const char* flags : bad) {
     std::string out;
     EXPECT_NE(run(obj.string() + flags + o, &out), 0) << flags;

@@ -6,11 +6,10 @@
 // drivers and Mesa versions): at most 1% of the pixels may differ by more than
 // 24 levels in some channel, and the mean absolute difference must stay under
 // 2 levels. GEOM_UPDATE_GOLDEN=1 rewrites the files instead of comparing.
-#include "test_gl_common.h"
-
 #include <cstdlib>
 
 #include "geom/import.h"
+#include "gl_fixtures.h"
 
 using namespace gltest;
 
@@ -18,21 +17,15 @@ namespace {
 
 struct Light {
   const char* name;
-  viewer::LightSetup setup;
+  geom::Light setup;
 };
 
-std::vector<Light> scene_lights(const geom::Scene& scene) {
+// The scene's own point and directional lights, as the scene declares them.
+std::vector<Light> golden_lights(const geom::Scene& scene) {
   std::vector<Light> out;
   for (const geom::Light& l : scene.lights) {
-    viewer::LightSetup s;
-    const glm::vec3 p(l.position[0], l.position[1], l.position[2]), d(l.direction[0], l.direction[1], l.direction[2]);
-    if (l.type == geom::LightType::Directional) {
-      s.position = glm::vec4(-d, 0);
-      out.push_back({"directional", s});
-    } else if (l.type == geom::LightType::Point) {
-      s.position = glm::vec4(p, 1);
-      out.push_back({"point", s});
-    }
+    if (l.type == geom::LightType::Directional) out.push_back({"directional", l});
+    if (l.type == geom::LightType::Point) out.push_back({"point", l});
   }
   return out;
 }
@@ -42,24 +35,28 @@ TEST(GlGolden, EveryTechniqueOnTheDefaultScene) {
   const std::string path = std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf";
   geom::ImportResult imported = geom::import_file(path);
   ASSERT_TRUE(imported.ok) << imported.error;
-  const std::vector<Light> lights = scene_lights(imported.scene);
+  const std::vector<Light> lights = golden_lights(imported.scene);
   ASSERT_EQ(lights.size(), 2u) << "the default scene declares a point and a directional light";
   std::string error;
-  auto state = viewer::create_state(imported.scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(imported.scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  const viewer::View view = viewer::default_view(*state, 160, 120);
+  const geom::Camera view = render::default_view(*state, 160, 120);
   const bool update = std::getenv("GEOM_UPDATE_GOLDEN") != nullptr;
   for (const Light& light : lights)
-    for (viewer::Technique t : viewer::available_techniques()) {
-      if (t == viewer::Technique::Cube && light.setup.position.w == 0) continue;
-      viewer::FrameSettings fs;
+    for (render::Technique t : render::available_techniques()) {
+      if (t == render::Technique::Cube && directional(light.setup)) continue;
+      render::FrameSettings fs;
       fs.technique = t;
       fs.shadow_map_size = 512;
+      float bounds[4];
+      render::scene_bounds(*state, bounds);
+      if (render::technique_is_soft(t))  // a disc light: 4% of the scene's radius, 0.02 rad for the sun
+        fs.light_radius = directional(light.setup) ? 0.02f : 0.04f * bounds[3];
       geom::PngImage image;
-      std::vector<viewer::PassTime> times;
-      ASSERT_TRUE(viewer::render(*state, view, light.setup, fs, image, times, error)) << error;
+      std::vector<render::PassTime> times;
+      ASSERT_TRUE(render::render(*state, view, light.setup, fs, image, times, error)) << error;
       const std::string golden =
-          std::string(GEOM_SOURCE_DIR) + "/tests/golden/" + viewer::technique_name(t) + "_" + light.name + ".png";
+          std::string(GEOM_SOURCE_DIR) + "/tests/golden/" + render::technique_name(t) + "_" + light.name + ".png";
       SCOPED_TRACE(golden);
       if (update) {
         ASSERT_TRUE(geom::write_png(golden, image, error)) << error;
@@ -98,18 +95,20 @@ TEST(GlGolden, DefaultSceneMasksAgreeWithTheReference) {
   geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
   ASSERT_TRUE(imported.ok) << imported.error;
   std::string error;
-  auto state = viewer::create_state(imported.scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(imported.scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  const viewer::View view = viewer::default_view(*state, 200, 150);
-  for (const Light& light : scene_lights(imported.scene))
-    for (viewer::Technique t : {viewer::Technique::Ssm, viewer::Technique::Pcf, viewer::Technique::Psm,
-                                viewer::Technique::Lispsm, viewer::Technique::Uniform, viewer::Technique::Edsm,
-                                viewer::Technique::Esm, viewer::Technique::Sv}) {
+  const geom::Camera view = render::default_view(*state, 200, 150);
+  for (const Light& light : golden_lights(imported.scene))
+    for (render::Technique t : {render::Technique::Ssm, render::Technique::Pcf, render::Technique::Psm,
+                                render::Technique::Lispsm, render::Technique::Uniform, render::Technique::Edsm,
+                                render::Technique::Esm, render::Technique::Sssm, render::Technique::Sv}) {
       const Comparison c = render_and_compare(*state, imported.scene, view, light.setup, t, 1024);
-      SCOPED_TRACE(std::string(light.name) + " " + viewer::technique_name(t));
+      SCOPED_TRACE(std::string(light.name) + " " + render::technique_name(t));
       EXPECT_GT(c.shadowed, 100u);
-      if (t == viewer::Technique::Sv) EXPECT_EQ(c.wrong, 0u);
-      else EXPECT_LT(c.error(), 0.002) << c.wrong << " of " << c.certain;  // a few texel-staircase pixels
+      if (t == render::Technique::Sv)
+        EXPECT_EQ(c.wrong, 0u);
+      else
+        EXPECT_LT(c.error(), 0.002) << c.wrong << " of " << c.certain;  // a few texel-staircase pixels
     }
 }
 

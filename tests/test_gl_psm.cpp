@@ -18,35 +18,28 @@
 //     there every map, uniform too, has acne that no bias removes);
 //   - a lone plane, and a plane with a wall standing on it, seen at a grazing
 //     angle, under random suns: no pixel of acne where the reference is sure.
-#include "test_gl_common.h"
-
 #include "geom/import.h"
+#include "gl_fixtures.h"
 
 using namespace gltest;
-using viewer::Technique;
+using render::Technique;
 
 namespace {
 
 constexpr Technique kFocused[] = {Technique::Uniform, Technique::Psm, Technique::Lispsm};
 
-viewer::LightSetup sun(glm::vec3 towards_light) {
-  viewer::LightSetup l;
-  l.position = glm::vec4(towards_light, 0);
-  return l;
-}
-
 struct Errors {
   double by_technique[3] = {0, 0, 0};  // uniform, psm, lispsm
 };
 
-Errors focused_errors(viewer::State& state, const geom::Scene& scene, const viewer::View& view,
-                      const viewer::LightSetup& light, int map_size, const char* what) {
+Errors focused_errors(render::State& state, const geom::Scene& scene, const geom::Camera& view,
+                      const geom::Light& light, int map_size, const char* what) {
   Errors e;
   for (int i = 0; i < 3; ++i) {
     const Comparison c = render_and_compare(state, scene, view, light, kFocused[i], map_size);
     e.by_technique[i] = c.error();
     std::printf("%s %s: %zu certain, %zu wrong (%.3f%%), lit %zu shadowed %zu\n", what,
-                viewer::technique_name(kFocused[i]), c.certain, c.wrong, 100 * c.error(), c.lit, c.shadowed);
+                render::technique_name(kFocused[i]), c.certain, c.wrong, 100 * c.error(), c.lit, c.shadowed);
   }
   return e;
 }
@@ -65,15 +58,15 @@ TEST(GlPsm, DefaultSceneUnderTheReportedSunHasNoAcneNorLostShadows) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = default_scene();
   std::string error;
-  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  const viewer::View view = viewer::default_view(*state, 640, 480);
+  const geom::Camera view = render::default_view(*state, 640, 480);
   for (int map_size : {512, 1024, 2048}) {
     const std::string what = "reported sun, map " + std::to_string(map_size);
     SCOPED_TRACE(what);
     const Errors e = focused_errors(*state, scene, view, sun({0.3f, 1.0f, 0.6f}), map_size, what.c_str());
     for (int i = 1; i < 3; ++i) {
-      SCOPED_TRACE(viewer::technique_name(kFocused[i]));
+      SCOPED_TRACE(render::technique_name(kFocused[i]));
       EXPECT_LT(e.by_technique[i], 0.001);  // a few texel-staircase pixels
       EXPECT_LE(e.by_technique[i], e.by_technique[0] + 0.0005);
     }
@@ -85,9 +78,9 @@ TEST(GlPsm, DefaultSceneUnderRandomSuns) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = default_scene();
   std::string error;
-  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  const viewer::View view = viewer::default_view(*state, 200, 150);
+  const geom::Camera view = render::default_view(*state, 200, 150);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(-1, 1), up(0.25f, 1);
   for (int k = 0; k < 6;) {
@@ -96,11 +89,12 @@ TEST(GlPsm, DefaultSceneUnderRandomSuns) {
     // every shadow map (uniform too) has acne the bias cannot remove.
     if (std::fabs(d.z) < 0.17f * glm::length(d)) continue;
     ++k;
-    const std::string what = "sun (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ", " + std::to_string(d.z) + ")";
+    const std::string what =
+        "sun (" + std::to_string(d.x) + ", " + std::to_string(d.y) + ", " + std::to_string(d.z) + ")";
     SCOPED_TRACE(what);
     const Errors e = focused_errors(*state, scene, view, sun(d), 1024, what.c_str());
     for (int i = 0; i < 3; ++i) {
-      SCOPED_TRACE(viewer::technique_name(kFocused[i]));
+      SCOPED_TRACE(render::technique_name(kFocused[i]));
       EXPECT_LT(e.by_technique[i], 0.01);
       if (i > 0) EXPECT_LE(e.by_technique[i], e.by_technique[0] + 0.003);
     }
@@ -123,9 +117,9 @@ TEST(GlPsm, GrazingPlanesUnderRandomSunsShowNoAcne) {
   add_ground(plane, 8);
   geom::Scene wall = plane;
   add_quad(wall, {0, 0, -3}, {0, 0, 3}, {0, 2.5f, 3}, {0, 2.5f, -3});
-  viewer::View view;
-  view.eye = {6, 0.6f, 1.5f};
-  view.target = {0, 0.3f, 0};
+  geom::Camera view;
+  set3(view.eye, {6, 0.6f, 1.5f});
+  set3(view.target, {0, 0.3f, 0});
   view.fovy_deg = 60;
   view.near_plane = 0.05f;
   view.far_plane = 100;
@@ -134,16 +128,16 @@ TEST(GlPsm, GrazingPlanesUnderRandomSunsShowNoAcne) {
   std::uniform_real_distribution<float> u(-1, 1), up(0.2f, 1);
   for (const geom::Scene* scene : {&plane, &wall}) {
     std::string error;
-    auto state = viewer::create_state(*scene, GEOMVIEW_SHADER_DIR, error);
+    auto state = render::create_state(*scene, GEOM_SHADER_DIR, error);
     ASSERT_TRUE(state) << error;
     for (int k = 0; k < 5; ++k) {
       const glm::vec3 d(u(rng), up(rng), u(rng));
-      const std::string what = std::string(scene == &plane ? "plane" : "wall") + " sun (" + std::to_string(d.x) +
-                               ", " + std::to_string(d.y) + ", " + std::to_string(d.z) + ")";
+      const std::string what = std::string(scene == &plane ? "plane" : "wall") + " sun (" + std::to_string(d.x) + ", " +
+                               std::to_string(d.y) + ", " + std::to_string(d.z) + ")";
       SCOPED_TRACE(what);
       const Errors e = focused_errors(*state, *scene, view, sun(d), 512, what.c_str());
       for (int i = 0; i < 3; ++i) {
-        SCOPED_TRACE(viewer::technique_name(kFocused[i]));
+        SCOPED_TRACE(render::technique_name(kFocused[i]));
         EXPECT_LT(e.by_technique[i], scene == &plane ? 1e-9 : 0.005);
       }
     }

@@ -6,10 +6,10 @@
 // of adequate size agrees with the exact mask on all but a small fraction of
 // pixels: the fraction allowed covers the map's texel-sized staircase and the
 // bias near contact, not inverted or missing shadows (which cost tens of percent).
-#include "test_gl_common.h"
+#include "gl_fixtures.h"
 
 using namespace gltest;
-using viewer::Technique;
+using render::Technique;
 
 namespace {
 
@@ -28,39 +28,24 @@ geom::Scene blocks_scene() {
   return s;
 }
 
-viewer::View default_view() {
-  viewer::View v;
-  v.eye = {4, 5, 8};
-  v.target = {0, 0.5f, 0};
-  v.fovy_deg = 50;
-  v.near_plane = 0.1f;
-  v.far_plane = 100;
-  v.width = 200, v.height = 150;
-  return v;
-}
-
-viewer::LightSetup point_light(glm::vec3 p) {
-  viewer::LightSetup l;
-  l.position = glm::vec4(p, 1);
-  return l;
-}
+geom::Camera default_view() { return camera({4, 5, 8}, {0, 0.5f, 0}, 50, 0.1f, 100, 200, 150); }
 
 struct Case {
   const char* name;
-  viewer::LightSetup light;
+  geom::Light light;
 };
 
 std::vector<Case> light_cases() {
   std::vector<Case> cases;
   cases.push_back({"point", point_light({-1.5f, 3.5f, -3.5f})});
   cases.push_back({"point outside the scene box", point_light({-5.0f, 9.0f, -8.0f})});
-  viewer::LightSetup spot = point_light({-3, 7, 2});
-  spot.spot = true;
-  spot.spot_direction = glm::vec3(3, -7, -2);
-  spot.spot_angle_deg = 40;
+  geom::Light spot = point_light({-3, 7, 2});
+  spot.type = geom::LightType::Spot;
+  for (int k = 0; k < 3; ++k) spot.direction[k] = glm::vec3(3, -7, -2)[k];
+  spot.outer_cone = 40 * M_PI / 180;
   cases.push_back({"spot", spot});
-  viewer::LightSetup dir;
-  dir.position = glm::vec4(-0.6f, 0.8f, -0.5f, 0);
+  geom::Light dir;
+  dir = sun({-0.6f, 0.8f, -0.5f});
   cases.push_back({"directional", dir});
   return cases;
 }
@@ -69,16 +54,16 @@ TEST(GlShadowMaps, MasksAgreeWithTheReferenceAwayFromBoundaries) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = blocks_scene();
   std::string error;
-  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
   for (const Case& c : light_cases())
-    for (Technique t : {Technique::Ssm, Technique::Pcf, Technique::Cube, Technique::Psm, Technique::Lispsm,
-                        Technique::Uniform}) {
-      if (t == Technique::Cube && c.light.position.w == 0) continue;
+    for (Technique t :
+         {Technique::Ssm, Technique::Pcf, Technique::Cube, Technique::Psm, Technique::Lispsm, Technique::Uniform}) {
+      if (t == Technique::Cube && directional(c.light)) continue;
       const Comparison cmp = render_and_compare(*state, scene, default_view(), c.light, t, 1024);
-      SCOPED_TRACE(std::string(c.name) + " " + viewer::technique_name(t));
+      SCOPED_TRACE(std::string(c.name) + " " + render::technique_name(t));
       std::printf("%s %s: %zu certain, %zu wrong (%.3f%%), lit %zu shadowed %zu background %zu\n", c.name,
-                  viewer::technique_name(t), cmp.certain, cmp.wrong, 100 * cmp.error(), cmp.lit, cmp.shadowed,
+                  render::technique_name(t), cmp.certain, cmp.wrong, 100 * cmp.error(), cmp.lit, cmp.shadowed,
                   cmp.background);
       EXPECT_GT(cmp.lit, 1000u);
       EXPECT_GT(cmp.shadowed, 1000u);

@@ -4,10 +4,10 @@
 // non-manifold casters, with the camera outside and inside a shadow volume.
 // Depth-pass with the camera inside a volume is the classic failure: it is
 // checked to fail, which shows the comparison can.
-#include "test_gl_common.h"
+#include "gl_fixtures.h"
 
 using namespace gltest;
-using viewer::Technique;
+using render::Technique;
 
 namespace {
 
@@ -73,30 +73,21 @@ geom::Scene non_manifold_scene() {
   return s;
 }
 
-viewer::View view_from(glm::vec3 eye, glm::vec3 target) {
-  viewer::View v;
-  v.eye = eye;
-  v.target = target;
-  v.fovy_deg = 55;
-  v.near_plane = 0.05f;
-  v.far_plane = 100;
-  v.width = 160, v.height = 120;
-  return v;
-}
+geom::Camera view_from(glm::vec3 eye, glm::vec3 target) { return camera(eye, target, 55, 0.05f, 100, 160, 120); }
 
-std::vector<viewer::LightSetup> lights() {
-  std::vector<viewer::LightSetup> out;
-  viewer::LightSetup point;
-  point.position = glm::vec4(-1.0f, 5.0f, -2.5f, 1);
+std::vector<geom::Light> lights() {
+  std::vector<geom::Light> out;
+  geom::Light point;
+  point = point_light({-1.0f, 5.0f, -2.5f});
   out.push_back(point);
-  viewer::LightSetup spot = point;
-  spot.position = glm::vec4(2.5f, 6.0f, 2.0f, 1);
-  spot.spot = true;
-  spot.spot_direction = glm::vec3(-2.5f, -6.0f, -2.0f);
-  spot.spot_angle_deg = 38;
+  geom::Light spot = point;
+  spot = point_light({2.5f, 6.0f, 2.0f});
+  spot.type = geom::LightType::Spot;
+  for (int k = 0; k < 3; ++k) spot.direction[k] = glm::vec3(-2.5f, -6.0f, -2.0f)[k];
+  spot.outer_cone = 38 * M_PI / 180;
   out.push_back(spot);
-  viewer::LightSetup dir;
-  dir.position = glm::vec4(-0.5f, 0.9f, 0.35f, 0);
+  geom::Light dir;
+  dir = sun({-0.5f, 0.9f, 0.35f});
   out.push_back(dir);
   return out;
 }
@@ -104,16 +95,16 @@ std::vector<viewer::LightSetup> lights() {
 void check_scene(const geom::Scene& scene, const char* name) {
   ASSERT_NE(context(), nullptr);
   std::string error;
-  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  const viewer::View views[] = {view_from({4, 5, 8}, {0, 0.5f, 0}), view_from({-6, 3, -5}, {0, 0.8f, 0}),
+  const geom::Camera views[] = {view_from({4, 5, 8}, {0, 0.5f, 0}), view_from({-6, 3, -5}, {0, 0.8f, 0}),
                                 view_from({0.5f, 9, 0.5f}, {0, 0, 0})};
-  for (const viewer::View& v : views)
-    for (const viewer::LightSetup& l : lights())
+  for (const geom::Camera& v : views)
+    for (const geom::Light& l : lights())
       for (Technique t : {Technique::Sv, Technique::SvZPass, Technique::SvZFail}) {
         const Comparison c = render_and_compare(*state, scene, v, l, t, 256);
-        SCOPED_TRACE(std::string(name) + " " + viewer::technique_name(t) + " light w=" + std::to_string(l.position.w) +
-                     (l.spot ? " spot" : ""));
+        SCOPED_TRACE(std::string(name) + " " + render::technique_name(t) + " light w=" +
+                     std::to_string(directional(l) ? 0.0f : 1.0f) + (l.type == geom::LightType::Spot ? " spot" : ""));
         EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain << " certain pixels differ";
         EXPECT_GT(c.shadowed, 200u);
         EXPECT_GT(c.lit, 200u);
@@ -131,17 +122,17 @@ TEST(GlShadowVolumes, CameraInsideAVolume) {
   for (bool closed : {true, false}) {
     const geom::Scene scene = closed ? closed_scene() : open_scene();
     std::string error;
-    auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+    auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
     ASSERT_TRUE(state) << error;
-    viewer::LightSetup l;
+    geom::Light l;
     // Straight above the floating caster (closed: the box at y 2.1..2.7; open: the quad at y 2..2.3).
     const glm::vec3 above = closed ? glm::vec3(1.5f, 8, 1.5f) : glm::vec3(1.25f, 8, -0.25f);
-    l.position = glm::vec4(above, 1);
+    l = point_light({above});
     const glm::vec3 eye(above.x + 0.05f, 1.2f, above.z - 0.05f);
-    const viewer::View v = view_from(eye, eye + glm::vec3(-3, -1.0f, -2));
+    const geom::Camera v = view_from(eye, eye + glm::vec3(-3, -1.0f, -2));
     for (Technique t : {Technique::Sv, Technique::SvZFail}) {
       const Comparison c = render_and_compare(*state, scene, v, l, t, 256);
-      SCOPED_TRACE(viewer::technique_name(t));
+      SCOPED_TRACE(render::technique_name(t));
       EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain << " certain pixels differ";
       EXPECT_GT(c.lit, 500u);
     }
@@ -158,31 +149,33 @@ TEST(GlShadowVolumes, HardCases) {
   struct Setup {
     const char* name;
     glm::vec3 offset;
-    viewer::View view;
-    viewer::LightSetup light;
+    geom::Camera view;
+    geom::Light light;
   };
   std::vector<Setup> setups;
-  viewer::LightSetup point;
-  point.position = glm::vec4(-1.0f, 5.0f, -2.5f, 1);
+  geom::Light point;
+  point = point_light({-1.0f, 5.0f, -2.5f});
   setups.push_back({"far from the origin", glm::vec3(1.0e5f, 0, -1.0e5f), view_from({4, 5, 8}, {0, 0.5f, 0}), point});
-  viewer::LightSetup behind;
-  behind.position = glm::vec4(6.0f, 7.0f, 12.0f, 1);  // behind the camera at (4, 5, 8) looking at the origin
+  geom::Light behind;
+  behind = point_light({6.0f, 7.0f, 12.0f});  // behind the camera at (4, 5, 8) looking at the origin
   setups.push_back({"light behind the viewer", glm::vec3(0), view_from({4, 5, 8}, {0, 0.5f, 0}), behind});
-  viewer::LightSetup grazing;
-  grazing.position = glm::vec4(-4.0f, 1.2f, 3.0f, 1);  // in the plane of the first box's top face (y = 1.2)
+  geom::Light grazing;
+  grazing = point_light({-4.0f, 1.2f, 3.0f});  // in the plane of the first box's top face (y = 1.2)
   setups.push_back({"light in a face's plane", glm::vec3(0), view_from({4, 5, 8}, {0, 0.5f, 0}), grazing});
   for (Setup& setup : setups) {
     geom::Scene scene = closed_scene();
     for (size_t i = 0; i < scene.positions.size(); i += 3)
       for (int k = 0; k < 3; ++k) scene.positions[i + k] += setup.offset[k];
-    setup.view.eye += setup.offset, setup.view.target += setup.offset;
-    setup.light.position += glm::vec4(setup.offset, 0) * setup.light.position.w;
+    set3(setup.view.eye, vec3(setup.view.eye) + setup.offset),
+        set3(setup.view.target, vec3(setup.view.target) + setup.offset);
+    if (!directional(setup.light))  // moved with the scene, in float as the scene's positions are
+      for (int k = 0; k < 3; ++k) setup.light.position[k] = float(float(setup.light.position[k]) + setup.offset[k]);
     std::string error;
-    auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+    auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
     ASSERT_TRUE(state) << error;
     for (Technique t : {Technique::Sv, Technique::SvZFail}) {
       const Comparison c = render_and_compare(*state, scene, setup.view, setup.light, t, 256);
-      SCOPED_TRACE(std::string(setup.name) + " " + viewer::technique_name(t));
+      SCOPED_TRACE(std::string(setup.name) + " " + render::technique_name(t));
       EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain << " certain pixels differ";
       EXPECT_GT(c.lit + c.shadowed, 5000u);
     }
@@ -203,20 +196,21 @@ TEST(GlShadowVolumes, LightOnACaster) {
          scene.indices[3 * face + 2] != top)
     ++face;
   std::string error;
-  auto state = viewer::create_state(scene, GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
   for (int where = 0; where < 2; ++where) {
-    viewer::LightSetup l;
+    geom::Light l;
     glm::vec3 p(0);
     for (int k = 0; k < 3; ++k)
       p[k] = where == 0 ? scene.positions[3 * top + k]
                         : (scene.positions[3 * scene.indices[3 * face] + k] +
                            scene.positions[3 * scene.indices[3 * face + 1] + k] +
-                           scene.positions[3 * scene.indices[3 * face + 2] + k]) / 3;
-    l.position = glm::vec4(p, 1);
+                           scene.positions[3 * scene.indices[3 * face + 2] + k]) /
+                              3;
+    l = point_light({p});
     for (Technique t : {Technique::Sv, Technique::SvZFail}) {
       const Comparison c = render_and_compare(*state, scene, view_from({4, 5, 8}, {0, 0.5f, 0}), l, t, 256);
-      SCOPED_TRACE(std::string(where == 0 ? "at a vertex " : "inside a face ") + viewer::technique_name(t));
+      SCOPED_TRACE(std::string(where == 0 ? "at a vertex " : "inside a face ") + render::technique_name(t));
       EXPECT_EQ(c.wrong, 0u) << c.wrong << " of " << c.certain << " certain pixels differ";
       EXPECT_GT(c.lit + c.shadowed, 5000u);
     }
@@ -227,22 +221,22 @@ TEST(GlShadowVolumes, LightOnACaster) {
 TEST(GlShadowVolumes, EmptyScene) {
   ASSERT_NE(context(), nullptr);
   std::string error;
-  auto state = viewer::create_state(geom::Scene(), GEOMVIEW_SHADER_DIR, error);
+  auto state = render::create_state(geom::Scene(), GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  viewer::LightSetup l;
-  l.position = glm::vec4(1, 5, 2, 1);
-  for (Technique t : viewer::available_techniques()) {
-    viewer::FrameSettings fs;
+  geom::Light l;
+  l = point_light({1, 5, 2});
+  for (Technique t : render::available_techniques()) {
+    render::FrameSettings fs;
     fs.technique = t;
-    fs.output = viewer::Output::Mask;
+    fs.output = render::Output::Mask;
     fs.inspect = true;
     geom::PngImage mask;
-    std::vector<viewer::PassTime> times;
-    ASSERT_TRUE(viewer::render(*state, view_from({4, 5, 8}, {0, 0, 0}), l, fs, mask, times, error))
-        << viewer::technique_name(t) << ": " << error;
+    std::vector<render::PassTime> times;
+    ASSERT_TRUE(render::render(*state, view_from({4, 5, 8}, {0, 0, 0}), l, fs, mask, times, error))
+        << render::technique_name(t) << ": " << error;
     size_t background = 0;
     for (uint8_t v : mask.pixels) background += v == 128;
-    EXPECT_EQ(background, mask.pixels.size()) << viewer::technique_name(t);
+    EXPECT_EQ(background, mask.pixels.size()) << render::technique_name(t);
   }
 }
 

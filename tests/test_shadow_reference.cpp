@@ -68,7 +68,14 @@ void add_scene(std::vector<float>& p, std::vector<uint32_t>& idx) {
   quad({l.x, l.y, h.z}, {h.x, l.y, h.z}, {h.x, h.y, h.z}, {l.x, h.y, h.z});  // +z
 }
 
-uint8_t closed_form(const geom::ReferenceCamera& c, const geom::ReferenceLight& light, int x, int y) {
+// A point light high above the origin.
+geom::Light overhead() {
+  geom::Light l;
+  l.position[1] = 10;
+  return l;
+}
+
+uint8_t closed_form(const geom::Camera& c, const geom::Light& light, int x, int y) {
   const D3 eye{c.eye[0], c.eye[1], c.eye[2]};
   const D3 f = unit(D3{c.target[0], c.target[1], c.target[2]} - eye);
   const D3 r = unit(cross(f, {c.up[0], c.up[1], c.up[2]}));
@@ -87,13 +94,15 @@ uint8_t closed_form(const geom::ReferenceCamera& c, const geom::ReferenceLight& 
   }
   if (!hit) return 128;
   const D3 P = eye + d * t;
-  const D3 L{light.position[0], light.position[1], light.position[2]};
-  const double w = light.position[3];
+  double h[4];  // homogeneous (geom/scene.h)
+  geom::light_homogeneous(light, h);
+  const D3 L{h[0], h[1], h[2]};
+  const double w = h[3];
   const D3 to_light = L - P * w;
   if (dot(n, to_light) <= 0) return 0;
-  if (light.spot) {
-    const D3 axis = unit({light.spot_direction[0], light.spot_direction[1], light.spot_direction[2]});
-    if (dot(unit(P - L), axis) < std::cos(light.spot_angle_deg * M_PI / 180)) return 0;
+  if (light.type == geom::LightType::Spot) {
+    const D3 axis = unit({light.direction[0], light.direction[1], light.direction[2]});
+    if (dot(unit(P - L), axis) < std::cos(light.outer_cone)) return 0;
   }
   double tb;
   D3 nb;
@@ -109,22 +118,22 @@ TEST(ShadowReference, MatchesClosedFormOnRandomLightsAndCameras) {
   std::uniform_real_distribution<double> U(-1, 1);
   size_t shadowed = 0, lit = 0;  // over all trials: the law is not checked on an empty shadow
   for (int trial = 0; trial < 24; ++trial) {
-    geom::ReferenceCamera cam;
+    geom::Camera cam;
     cam.width = 64, cam.height = 48;
     const double a = U(rng) * M_PI;
     cam.eye[0] = float(6 * std::cos(a)), cam.eye[1] = float(3 + 2 * U(rng)), cam.eye[2] = float(6 * std::sin(a));
     cam.target[0] = float(U(rng) * 0.5), cam.target[1] = 0.5f, cam.target[2] = float(U(rng) * 0.5);
     cam.fovy_deg = float(50 + 10 * U(rng));
-    geom::ReferenceLight light;
     const int kind = trial % 3;  // point, spot, directional
-    light.position[0] = float(3 * U(rng)), light.position[1] = float(3.5 + U(rng)), light.position[2] = float(3 * U(rng));
-    light.position[3] = kind == 2 ? 0.0f : 1.0f;
-    light.spot = kind == 1;
-    light.spot_direction[0] = -light.position[0], light.spot_direction[1] = -light.position[1];
-    light.spot_direction[2] = -light.position[2];
-    light.spot_angle_deg = 35;
-    const geom::ShadowReference ref = geom::shadow_reference(geom::positions_of(p.data(), p.size() / 3), idx.data(),
-                                                             idx.size(), cam, light);
+    const double h[4] = {float(3 * U(rng)), float(3.5 + U(rng)), float(3 * U(rng)), kind == 2 ? 0.0 : 1.0};
+    geom::Light light = geom::light_from_homogeneous(h);
+    if (kind == 1) {
+      light.type = geom::LightType::Spot;
+      for (int k = 0; k < 3; ++k) light.direction[k] = -h[k];
+      light.outer_cone = 35 * M_PI / 180;
+    }
+    const geom::ShadowReference ref =
+        geom::shadow_reference(geom::positions_of(p.data(), p.size() / 3), idx.data(), idx.size(), cam, light);
     ASSERT_TRUE(ref.ok) << ref.error;
     size_t certain = 0;
     for (int y = 0; y < cam.height; ++y)
@@ -133,7 +142,8 @@ TEST(ShadowReference, MatchesClosedFormOnRandomLightsAndCameras) {
         if (ref.uncertain[i]) continue;
         ++certain;
         shadowed += ref.mask[i] == 0, lit += ref.mask[i] == 255;
-        ASSERT_EQ(int(ref.mask[i]), int(closed_form(cam, light, x, y))) << "trial " << trial << " pixel " << x << "," << y;
+        ASSERT_EQ(int(ref.mask[i]), int(closed_form(cam, light, x, y)))
+            << "trial " << trial << " pixel " << x << "," << y;
       }
     EXPECT_GT(certain, size_t(cam.width * cam.height / 2));
   }
@@ -145,12 +155,13 @@ TEST(ShadowReference, UncertainMarksEveryPixelNextToAnotherValue) {
   std::vector<float> p;
   std::vector<uint32_t> idx;
   add_scene(p, idx);
-  geom::ReferenceCamera cam;
+  geom::Camera cam;
   cam.eye[0] = 3, cam.eye[1] = 5, cam.eye[2] = 6;
   cam.width = 40, cam.height = 30;
-  geom::ReferenceLight light;
+  geom::Light light;
   light.position[0] = 1, light.position[1] = 4, light.position[2] = 0.5f;
-  const auto ref = geom::shadow_reference(geom::positions_of(p.data(), p.size() / 3), idx.data(), idx.size(), cam, light);
+  const auto ref =
+      geom::shadow_reference(geom::positions_of(p.data(), p.size() / 3), idx.data(), idx.size(), cam, light);
   ASSERT_TRUE(ref.ok);
   for (int y = 0; y + 1 < cam.height; ++y)
     for (int x = 0; x + 1 < cam.width; ++x) {
@@ -164,9 +175,9 @@ TEST(ShadowReference, UncertainMarksEveryPixelNextToAnotherValue) {
 }
 
 TEST(ShadowReference, EmptySceneIsAllBackground) {
-  geom::ReferenceCamera cam;
+  geom::Camera cam;
   cam.width = 8, cam.height = 6;
-  const auto ref = geom::shadow_reference(geom::PositionSpan(), nullptr, 0, cam, geom::ReferenceLight());
+  const auto ref = geom::shadow_reference(geom::PositionSpan(), nullptr, 0, cam, overhead());
   ASSERT_TRUE(ref.ok) << ref.error;
   for (uint8_t v : ref.mask) EXPECT_EQ(v, 128);
 }
@@ -174,21 +185,21 @@ TEST(ShadowReference, EmptySceneIsAllBackground) {
 TEST(ShadowReference, RefusesBadInput) {
   const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   const uint32_t bad[3] = {0, 1, 3};
-  geom::ReferenceCamera cam;
-  auto r = geom::shadow_reference(geom::positions_of(p, 3), bad, 3, cam, geom::ReferenceLight());
+  geom::Camera cam;
+  auto r = geom::shadow_reference(geom::positions_of(p, 3), bad, 3, cam, overhead());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("out of range"), std::string::npos) << r.error;
   const float nan_p[9] = {0, 0, 0, NAN, 0, 0, 0, 1, 0};
   const uint32_t good[3] = {0, 1, 2};
-  r = geom::shadow_reference(geom::positions_of(nan_p, 3), good, 3, cam, geom::ReferenceLight());
+  r = geom::shadow_reference(geom::positions_of(nan_p, 3), good, 3, cam, overhead());
   EXPECT_FALSE(r.ok);
   EXPECT_NE(r.error.find("not finite"), std::string::npos) << r.error;
   cam.width = 0;
-  r = geom::shadow_reference(geom::positions_of(p, 3), good, 3, cam, geom::ReferenceLight());
+  r = geom::shadow_reference(geom::positions_of(p, 3), good, 3, cam, overhead());
   EXPECT_FALSE(r.ok);
   cam.width = 8;
   cam.far_plane = cam.near_plane;
-  r = geom::shadow_reference(geom::positions_of(p, 3), good, 3, cam, geom::ReferenceLight());
+  r = geom::shadow_reference(geom::positions_of(p, 3), good, 3, cam, overhead());
   EXPECT_FALSE(r.ok);
 }
 

@@ -86,7 +86,7 @@ bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional,
 
 // compute_focus (geom/focus.h), with the time of each stage added to `times`
 // when it is not null.
-bool compute_focus_staged(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
+bool compute_focus_staged(const CameraMatrices& camera, const Light& light, const FocusBox& scene,
                           const FocusOptions& options, FocusResult& out, StageTimes* times);
 
 }  // namespace focus

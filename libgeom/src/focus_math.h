@@ -8,6 +8,8 @@
 namespace geom {
 namespace focus {
 
+constexpr double kPi = 3.14159265358979323846;
+
 struct V3 {
   double x = 0, y = 0, z = 0;
   V3() = default;

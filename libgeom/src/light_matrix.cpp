@@ -38,8 +38,6 @@ using namespace focus;
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
-
 struct Frame {
   // camera
   M4 view, view_inv, proj;
@@ -328,7 +326,7 @@ void box_planes(const double* lo, const double* hi, std::vector<Plane>& out) {
 }
 
 // Fills `fr` from the inputs; false (with the reason) for invalid input.
-bool setup(const FocusCamera& cam, const FocusLight& light, FocusBox box, const FocusOptions& opt, Frame& fr,
+bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const FocusOptions& opt, Frame& fr,
            FocusResult& out) {
   fr.view = M4::from(cam.view);
   fr.proj = M4::from(cam.projection);
@@ -363,11 +361,11 @@ bool setup(const FocusCamera& cam, const FocusLight& light, FocusBox box, const 
   fr.eye = V3(e.x, e.y, e.z);
   fr.view_dir = normalize(V3(v.x, v.y, v.z));
 
-  fr.directional = light.type == FocusLightType::Directional;
+  fr.directional = light.type == LightType::Directional;
   if (!finite3(light.position) || !finite3(light.direction) || !std::isfinite(light.range) || light.range < 0 ||
-      !std::isfinite(light.near_dist) || light.near_dist < 0 || !std::isfinite(light.spot_angle) ||
-      (light.type == FocusLightType::Spot && !(light.spot_angle > 0)) ||
-      (light.type != FocusLightType::Point && !(length(V3(light.direction)) > 0))) {
+      !std::isfinite(opt.light_near) || opt.light_near < 0 || !std::isfinite(light.outer_cone) ||
+      (light.type == LightType::Spot && !(light.outer_cone > 0)) ||
+      (light.type != LightType::Point && !(length(V3(light.direction)) > 0))) {
     out.reason = "the light has a non-finite or zero direction, position, range, near or angle";
     return false;
   }
@@ -435,7 +433,7 @@ bool setup(const FocusCamera& cam, const FocusLight& light, FocusBox box, const 
   // Light frustum L (the near half-space of a point light is added later).
   fr.l_planes.clear();
   fr.light_pos = V3(light.position);
-  fr.light_near = light.near_dist > 0 ? light.near_dist : 1e-3 * diag;
+  fr.light_near = opt.light_near > 0 ? opt.light_near : 1e-3 * diag;
   if (fr.directional) {
     fr.towards_light = -normalize(V3(light.direction));
   } else {
@@ -444,10 +442,10 @@ bool setup(const FocusCamera& cam, const FocusLight& light, FocusBox box, const 
       for (int k = 0; k < 3; ++k) lo[k] = fr.light_pos[k] - light.range, hi[k] = fr.light_pos[k] + light.range;
       box_planes(lo, hi, fr.l_planes);
     }
-    if (light.type == FocusLightType::Spot) {
+    if (light.type == LightType::Spot) {
       V3 axis = normalize(V3(light.direction));
       fr.light_axis = axis;
-      double angle = std::fmin(light.spot_angle, 89.9 * kPi / 180);
+      double angle = std::fmin(light.outer_cone, 89.9 * kPi / 180);
       double s = std::sin(angle), c = std::cos(angle);
       V3 b1 = any_perpendicular(axis), b2 = cross(axis, b1);
       for (V3 side : {b1, -b1, b2, -b2}) fr.l_planes.push_back(plane_through(fr.light_pos, axis * s - side * c));
@@ -491,48 +489,6 @@ bool view_frustum(const Frame& fr, V3 corners[8]) {
 
 }  // namespace
 
-FocusCamera focus_camera_look_at(const double eye[3], const double target[3], const double up[3], double fovy_degrees,
-                                 double aspect, double near_dist, double far_dist) {
-  FocusCamera cam;
-  V3 e(eye), fwd = normalize(V3(target) - e);
-  V3 side = normalize(cross(fwd, V3(up)));
-  M4 view = frame(side, cross(side, fwd), -fwd, e);
-  double t = 1 / std::tan(fovy_degrees * kPi / 360);
-  M4 proj = M4::zero();
-  proj.at(0, 0) = t / aspect;
-  proj.at(1, 1) = t;
-  proj.at(3, 2) = -1;
-  if (std::isinf(far_dist)) {
-    proj.at(2, 2) = -1;
-    proj.at(2, 3) = -2 * near_dist;
-  } else {
-    proj.at(2, 2) = (far_dist + near_dist) / (near_dist - far_dist);
-    proj.at(2, 3) = 2 * far_dist * near_dist / (near_dist - far_dist);
-  }
-  // Degenerate input (eye == target, up parallel to the view) leaves zeros or
-  // NaN here, which compute_focus reports as invalid input.
-  if (!(length(side) > 0) || !(fovy_degrees > 0 && fovy_degrees < 180) || !(aspect > 0)) proj.at(0, 0) = NAN;
-  for (int i = 0; i < 16; ++i) cam.view[i] = view.m[i], cam.projection[i] = proj.m[i];
-  return cam;
-}
-
-FocusCamera focus_camera_from_matrices(const float view[16], const float projection[16]) {
-  FocusCamera cam;
-  for (int i = 0; i < 16; ++i) cam.view[i] = view[i], cam.projection[i] = projection[i];
-  return cam;
-}
-
-FocusLight focus_light_from(const Light& light) {
-  FocusLight l;
-  l.type = light.type == LightType::Directional ? FocusLightType::Directional
-           : light.type == LightType::Spot      ? FocusLightType::Spot
-                                                : FocusLightType::Point;
-  for (int k = 0; k < 3; ++k) l.position[k] = light.position[k], l.direction[k] = light.direction[k];
-  l.spot_angle = light.outer_cone;
-  l.range = light.range;
-  return l;
-}
-
 const char* focus_method_name(FocusMethod m) {
   return m == FocusMethod::Psm ? "psm" : m == FocusMethod::Lispsm ? "lispsm" : "uniform";
 }
@@ -563,12 +519,12 @@ const char* focus_fallback_name(FocusFallback f) {
   return "unknown";
 }
 
-bool compute_focus(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
-                   const FocusOptions& options, FocusResult& out) {
+bool compute_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene, const FocusOptions& options,
+                   FocusResult& out) {
   return compute_focus_staged(camera, light, scene, options, out, nullptr);
 }
 
-bool focus::compute_focus_staged(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
+bool focus::compute_focus_staged(const CameraMatrices& camera, const Light& light, const FocusBox& scene,
                                  const FocusOptions& options, FocusResult& out, StageTimes* times) {
   using Clock = std::chrono::steady_clock;
   Clock::time_point mark = times ? Clock::now() : Clock::time_point();
@@ -621,7 +577,7 @@ bool focus::compute_focus_staged(const FocusCamera& camera, const FocusLight& li
     } else {
       fr.receivers.clear();
     }
-    if (light.type == FocusLightType::Point && !fr.receivers.empty()) {
+    if (light.type == LightType::Point && !fr.receivers.empty()) {
       // A point light's L: the half-space at light_near beyond it, facing the
       // receivers' centre. Receivers behind it cannot share one map.
       unique_vertices(fr.receivers, fr.eps, fr.r_verts);
@@ -695,7 +651,7 @@ bool focus::compute_focus_staged(const FocusCamera& camera, const FocusLight& li
       frustum_polytope(c, fr.body);
       Polytope lit = fr.body;
       clip_polytope(lit, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
-      if (!fr.directional && light.type == FocusLightType::Point) fr.light_axis = fr.view_dir;
+      if (!fr.directional && light.type == LightType::Point) fr.light_axis = fr.view_dir;
       unique_vertices(lit.empty() ? fr.body : lit, fr.eps, fr.h_verts);
       M4 m;
       bool ok = !lit.empty() && uniform_matrix(fr, m);

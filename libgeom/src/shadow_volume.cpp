@@ -48,17 +48,16 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     }
   };
   auto is_pair = [&]() { return live.size() == 2 && ((live[0] ^ live[1]) & 1u); };
+  std::vector<uint32_t> open_faces;  // a face of each edge that is not a pair: its component is open
   for (const Edge& e : topology.edges) {
     gather(e);
     for (size_t i = 1; i < live.size(); ++i) {
       const uint32_t a = find_root(parent, live[0] >> 1), b = find_root(parent, live[i] >> 1);
       if (a != b) parent[b] = a;
     }
+    if (!live.empty() && !is_pair()) open_faces.push_back(live[0] >> 1);
   }
-  for (const Edge& e : topology.edges) {
-    gather(e);
-    if (!live.empty() && !is_pair()) open_root[find_root(parent, live[0] >> 1)] = 1;
-  }
+  for (uint32_t f : open_faces) open_root[find_root(parent, f)] = 1;
   // Dense component ids, in face order.
   std::vector<uint32_t> component(triangle_count, FacePlanes::kNone), dense(triangle_count, FacePlanes::kNone);
   for (size_t f = 0; f < triangle_count; ++f) {

@@ -42,10 +42,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/bake.h"
 #include "geom/version.h"
-#include "geombake/args.h"
 #include "geombake/bake_output.h"
 #include "geombake/command.h"
 #include "geombake/fault.h"
@@ -381,12 +381,12 @@ std::vector<std::string> split_jobs_flag(const std::vector<std::string>& argv) {
 }
 
 int run_bake(const std::vector<std::string>& argv) {
-  Args args(split_jobs_flag(argv),
-            {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
-             "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights", "--one-sided-closed",
-             "-q", "--quiet", "--force", "--allow-outside-uris"},
-            {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
-             "--md3-frame", "--max-triangles", "--max-memory", "--timeout", "--list", "-r"});
+  cli::Args args(split_jobs_flag(argv),
+                 {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
+                  "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights",
+                  "--one-sided-closed", "-q", "--quiet", "--force", "--allow-outside-uris"},
+                 {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
+                  "--md3-frame", "--max-triangles", "--max-memory", "--timeout", "--list", "-r"});
   if (args.has("--help") || args.has("-h")) {
     std::printf("geombake %s\n", GEOM_VERSION);
     std::fputs(kBakeHelp, stdout);
@@ -432,7 +432,7 @@ int run_bake(const std::vector<std::string>& argv) {
   options.topology.coplanar_degrees = options.planes.coplanar_degrees;
   for (const std::string& text : args.all("--light")) {
     float l[4];
-    if (!parse_floats(text, 4, l) || !std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) ||
+    if (!cli::parse_floats(text, 4, l) || !std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) ||
         !std::isfinite(l[3]) || (l[0] == 0 && l[1] == 0 && l[2] == 0 && l[3] == 0)) {
       std::fprintf(stderr, "Error: option --light: '%s' is not X,Y,Z,W (finite, not all zero)\n", text.c_str());
       return 2;

@@ -17,8 +17,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli/args.h"
 #include "geom/focus.h"
-#include "geombake/args.h"
 #include "geombake/command.h"
 
 namespace geombake {
@@ -68,7 +68,7 @@ geom::FocusBox box(const Json& obj, const char* parent) {
 }
 
 int run_focus(const std::vector<std::string>& argv) {
-  Args args(argv, {"--help", "-h"}, {});
+  cli::Args args(argv, {"--help", "-h"}, {});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kFocusHelp, stdout);
     return 0;
@@ -103,14 +103,14 @@ int run_focus(const std::vector<std::string>& argv) {
     if (c[0] == 0 && c[1] == 0 && c[2] == 0) throw BadFrame("camera.up: parallel to the view direction (or zero)");
 
     const Json& lj = member(frame, "frame", "light");
-    geom::FocusLight light;
+    geom::Light light;
     const Json& type = member(lj, "light", "type");
     std::string t = type.is_string() ? type.get<std::string>() : "";
     if (t == "directional") {
-      light.type = geom::FocusLightType::Directional;
+      light.type = geom::LightType::Directional;
       vec3(lj, "light", "direction", light.direction);
     } else if (t == "point" || t == "spot") {
-      light.type = t == "point" ? geom::FocusLightType::Point : geom::FocusLightType::Spot;
+      light.type = t == "point" ? geom::LightType::Point : geom::LightType::Spot;
       vec3(lj, "light", "position", light.position);
       if (lj.contains("range")) light.range = number(lj, "light", "range");
       if (light.range < 0) throw BadFrame("light.range: must not be negative");
@@ -118,7 +118,7 @@ int run_focus(const std::vector<std::string>& argv) {
         vec3(lj, "light", "direction", light.direction);
         double a = number(lj, "light", "spot_angle_degrees");
         if (!(a > 0 && a <= 90)) throw BadFrame("light.spot_angle_degrees: must lie in (0, 90]");
-        light.spot_angle = a * 3.14159265358979323846 / 180;
+        light.outer_cone = a * 3.14159265358979323846 / 180;
       }
     } else {
       throw BadFrame("light.type: expected \"directional\", \"point\" or \"spot\"");
@@ -143,7 +143,7 @@ int run_focus(const std::vector<std::string>& argv) {
         throw BadFrame("method: expected \"psm\", \"lispsm\" or \"uniform\"");
     }
 
-    geom::FocusCamera camera = geom::focus_camera_look_at(eye, target, up, fovy, aspect, near_d, far_d);
+    geom::CameraMatrices camera = geom::camera_look_at(eye, target, up, fovy, aspect, near_d, far_d);
     geom::FocusResult r;
     if (!geom::compute_focus(camera, light, scene, options, r))
       throw BadFrame(std::string("invalid frame: ") + r.reason);

@@ -6,10 +6,10 @@
 #include <cstdlib>
 #include <memory>
 
+#include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/import.h"
 #include "geom/report.h"
-#include "geombake/args.h"
 #include "geombake/command.h"
 #include "geombake/fault.h"
 #include "geombake/inputs.h"
@@ -35,9 +35,9 @@ const char* kInfoHelp =
     "  --allow-outside-uris  read glTF buffers outside the asset's folder too\n";
 
 int run_info(const std::vector<std::string>& argv) {
-  Args args(argv, {"--json", "-v", "--help", "-h", "--allow-outside-uris"},
-            {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles",
-             "--max-memory", "--timeout"});
+  cli::Args args(argv, {"--json", "-v", "--help", "-h", "--allow-outside-uris"},
+                 {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles",
+                  "--max-memory", "--timeout"});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kInfoHelp, stdout);
     return 0;

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli/args.h"
 #include "geom/baked_reader.h"
-#include "geombake/args.h"
 #include "geombake/command.h"
 #include "geombake/names.h"
 
@@ -28,7 +28,7 @@ std::string type_label(const geom::baked::Section& s) {
 }
 
 int run_inspect(const std::vector<std::string>& argv) {
-  Args args(argv, {"--json", "-v", "--help", "-h"}, {});
+  cli::Args args(argv, {"--json", "-v", "--help", "-h"}, {});
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kInspectHelp, stdout);
     return 0;

@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <string>
 
+#include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/extrude.h"
 #include "geom/import.h"
 #include "geom/silhouette.h"
-#include "geombake/args.h"
 #include "geombake/command.h"
 #include "geombake/inputs.h"
 
@@ -35,7 +35,7 @@ const char* kVolumeHelp =
     "  --patch-level N, --md3-frame N, --max-triangles N  as for `geombake info`\n";
 
 int run_volume(const std::vector<std::string>& argv) {
-  Args args(
+  cli::Args args(
       argv, {"-v", "--help", "-h", "--no-caps"},
       {"-o", "--light", "--extrude-distance", "--weld-tolerance", "--patch-level", "--md3-frame", "--max-triangles"});
   if (args.has("--help") || args.has("-h")) {
@@ -55,7 +55,7 @@ int run_volume(const std::vector<std::string>& argv) {
     return 2;
   }
   float lf[4];
-  if (!parse_floats(args.get("--light"), 4, lf) || !std::isfinite(lf[0]) || !std::isfinite(lf[1]) ||
+  if (!cli::parse_floats(args.get("--light"), 4, lf) || !std::isfinite(lf[0]) || !std::isfinite(lf[1]) ||
       !std::isfinite(lf[2]) || (lf[3] != 0.0f && lf[3] != 1.0f) ||
       (lf[3] == 0.0f && lf[0] == 0.0f && lf[1] == 0.0f && lf[2] == 0.0f)) {
     std::fprintf(stderr,

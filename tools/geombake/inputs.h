@@ -7,7 +7,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "geombake/args.h"
+#include "cli/args.h"
 
 namespace geombake {
 
@@ -20,7 +20,7 @@ bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string
 
 // Parses option `name` into `value` if present; prints `Error:` and returns false if malformed.
 template <class T>
-bool parse_number(const Args& args, const std::string& name, T& value) {
+bool parse_number(const cli::Args& args, const std::string& name, T& value) {
   if (!args.has(name)) return true;
   const std::string text = args.get(name);
   char* end = nullptr;

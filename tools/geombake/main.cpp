@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/version.h"
 #include "geombake/command.h"
@@ -36,7 +37,7 @@ int main(int argc, char** argv) {
   geom::remove_temp_files_on_signal();  // Ctrl-C or SIGTERM mid-write leaves no temporary file
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? stderr : stdout);
-    return argc < 2 ? 2 : 0;
+    return argc < 2 ? cli::kExitUsage : cli::kExitOk;
   }
   if (!std::strcmp(argv[1], "--version") || !std::strcmp(argv[1], "-V")) {
     std::printf("geombake %s\n", GEOM_VERSION);
@@ -51,12 +52,12 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "Error: out of memory\n");
         return 1;
       } catch (const std::exception& e) {
-        std::fprintf(stderr, "Error: %s\n", e.what());
-        return 1;
+        cli::error("%s", e.what());
+        return cli::kExitFailure;
       }
     }
   }
-  std::fprintf(stderr, "Error: unknown command '%s'\n", argv[1]);
+  cli::error("unknown command '%s'", argv[1]);
   usage(stderr);
-  return 2;
+  return cli::kExitUsage;
 }

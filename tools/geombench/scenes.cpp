@@ -83,21 +83,21 @@ void add_pipe(geom::Scene& s, glm::vec3 a, glm::vec3 b, float radius, int segmen
   tag_from(s, first);
 }
 
-viewer::LightSetup directional(glm::vec3 towards_light) {
-  viewer::LightSetup l;
-  l.position = glm::vec4(glm::normalize(towards_light), 0);
-  return l;
+geom::Light directional(glm::vec3 towards_light) {
+  const glm::vec3 t = glm::normalize(towards_light);
+  const double h[4] = {t.x, t.y, t.z, 0};
+  return geom::light_from_homogeneous(h);
 }
 
-viewer::LightSetup point(glm::vec3 p) {
-  viewer::LightSetup l;
-  l.position = glm::vec4(p, 1);
-  return l;
+geom::Light point(glm::vec3 p) {
+  const double h[4] = {p.x, p.y, p.z, 1};
+  return geom::light_from_homogeneous(h);
 }
 
-viewer::View look(glm::vec3 eye, glm::vec3 target, float near_plane, float far_plane, float fovy = 60) {
-  viewer::View v;
-  v.eye = eye, v.target = target, v.near_plane = near_plane, v.far_plane = far_plane, v.fovy_deg = fovy;
+geom::Camera look(glm::vec3 eye, glm::vec3 target, float near_plane, float far_plane, float fovy = 60) {
+  geom::Camera v;
+  for (int k = 0; k < 3; ++k) v.eye[k] = eye[k], v.target[k] = target[k];
+  v.near_plane = near_plane, v.far_plane = far_plane, v.fovy_deg = fovy;
   return v;
 }
 
@@ -159,20 +159,6 @@ bool add_draco(geom::Scene& s, const std::string& path, std::string& error) {
   return true;
 }
 
-viewer::LightSetup light_from_scene(const geom::Scene& scene) {
-  viewer::LightSetup l;
-  l.position = glm::vec4(0.4f, 1.0f, 0.6f, 0.0f);
-  if (scene.lights.empty()) return l;
-  const geom::Light& s = scene.lights.front();
-  const glm::vec3 p(s.position[0], s.position[1], s.position[2]), d(s.direction[0], s.direction[1], s.direction[2]);
-  if (s.type == geom::LightType::Directional) return directional(-d);
-  l = point(p);
-  l.spot = s.type == geom::LightType::Spot;
-  l.spot_direction = d;
-  l.spot_angle_deg = glm::degrees(s.outer_cone);
-  return l;
-}
-
 // A Quake 3 map (z up, units of an inch): the light 120 units above the floor
 // triangle nearest the level's centre, the camera above another floor triangle
 // 300 to 700 units away, looking at the light's floor point.
@@ -212,17 +198,14 @@ bool quake3(BenchScene& b, std::string& error) {
   size_t best_score = 0;
   b.default_view = false;
   b.view = look(lf + glm::vec3(300, 0, 56), lf + glm::vec3(0, 0, 40), 2, 8000, 75);
-  b.view.up = glm::vec3(0, 0, 1);
+  b.view.up[0] = 0, b.view.up[1] = 0, b.view.up[2] = 1;
   for (size_t i = 0; i < candidates.size(); i += step) {
-    viewer::View v = look(candidates[i] + glm::vec3(0, 0, 56), lf + glm::vec3(0, 0, 40), 2, 8000, 75);
-    v.up = glm::vec3(0, 0, 1);
-    geom::ReferenceCamera c;
-    for (int k = 0; k < 3; ++k) c.eye[k] = v.eye[k], c.target[k] = v.target[k], c.up[k] = v.up[k];
-    c.fovy_deg = v.fovy_deg, c.near_plane = v.near_plane, c.far_plane = v.far_plane, c.width = 64, c.height = 48;
-    geom::ReferenceLight l;
-    for (int k = 0; k < 4; ++k) l.position[k] = b.light.position[k];
+    geom::Camera v = look(candidates[i] + glm::vec3(0, 0, 56), lf + glm::vec3(0, 0, 40), 2, 8000, 75);
+    v.up[0] = 0, v.up[1] = 0, v.up[2] = 1;
+    geom::Camera c = v;
+    c.width = 64, c.height = 48;
     const geom::ShadowReference ref = geom::shadow_reference(geom::positions_of(s.positions.data(), s.vertex_count()),
-                                                             s.indices.data(), s.indices.size(), c, l);
+                                                             s.indices.data(), s.indices.size(), c, b.light);
     if (!ref.ok) continue;
     size_t lit = 0, dark = 0, none = 0;
     for (uint8_t m : ref.mask) (m == 255 ? lit : m == 0 ? dark : none)++;
@@ -274,7 +257,7 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
     geom::ImportResult r = geom::import_file(path);
     if (!r.ok) return error = r.error, false;
     b.scene = std::move(r.scene);
-    b.light = light_from_scene(b.scene);
+    b.light = geom::light_from_scene(b.scene.lights);
     b.description = "data/default_scene.gltf, its own light";
   } else if (name == "pipes") {
     add_ground(b.scene, -4, 4, -3, 4);

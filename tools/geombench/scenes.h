@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "geom/scene.h"
-#include "renderer.h"
 
 namespace geombench {
 
@@ -23,9 +22,9 @@ struct BenchScene {
   std::string name, description;
   geom::Scene scene;
   bool hard = false;         // counts in the "hard scenes" goals (edsm against ssm)
-  bool default_view = true;  // true: viewer::default_view of the scene
-  viewer::View view;         // else this camera (width / height set by the caller)
-  viewer::LightSetup light;
+  bool default_view = true;  // true: render::default_view of the scene
+  geom::Camera view;         // else this camera (width / height set by the caller)
+  geom::Light light;
 };
 
 // The scene of `name` (one of scene_names()); false with `error` set when its

@@ -77,32 +77,10 @@
 
 namespace geom {
 
-// The camera of the frame: world-to-eye view and eye-to-clip projection.
-struct FocusCamera {
-  double view[16];        // column-major, world -> eye (looks down -z)
-  double projection[16];  // column-major, eye -> clip (OpenGL, depth -1..1)
-};
-
-// gluLookAt + gluPerspective. fovy in degrees (0 < fovy < 180), aspect = width
-// / height > 0, 0 < near < far; far may be +infinity (an infinite far plane).
-FocusCamera focus_camera_look_at(const double eye[3], const double target[3], const double up[3], double fovy_degrees,
-                                 double aspect, double near_dist, double far_dist);
-// From an engine's own matrices (column-major floats, as glUniformMatrix4fv takes them).
-FocusCamera focus_camera_from_matrices(const float view[16], const float projection[16]);
-
-enum class FocusLightType : uint8_t { Directional, Point, Spot };
-
-// A punctual light, glTF style (KHR_lights_punctual).
-struct FocusLight {
-  FocusLightType type = FocusLightType::Directional;
-  double position[3] = {0, 0, 0};          // point, spot
-  double direction[3] = {0, 0, -1};        // the direction the light travels (spot, directional); need not be unit
-  double spot_angle = 0.7853981633974483;  // radians, axis to cone edge (glTF outer cone), spot only
-  double range = 0;                        // point, spot: beyond it no light (0 = infinite)
-  double near_dist = 0;  // point, spot: the light's near plane; 0 = automatic (1e-3 of the scene's diagonal)
-};
-// Converts an imported light (geom/scene.h).
-FocusLight focus_light_from(const Light& light);
+// The camera of a frame is geom/scene.h's CameraMatrices (camera_look_at,
+// camera_from_matrices); the light is geom/scene.h's Light (glTF's
+// convention: `direction` is where the light travels; `outer_cone` is a
+// spot's half-angle; `range` cuts point and spot frusta).
 
 struct FocusBox {
   double min[3];
@@ -146,6 +124,8 @@ struct FocusOptions {
   // Optional shadow casters: S becomes the convex hull of these points
   // intersected with the scene box (the box alone when empty).
   PositionSpan casters;
+  // Point, spot: the light's near plane; 0 = automatic (1e-3 of the scene's diagonal).
+  double light_near = 0;
 };
 
 struct FocusResult {
@@ -173,8 +153,8 @@ struct FocusResult {
 // The whole per-frame computation: H, the light's kind, the shift and the
 // matrix of options.method. Always fills `out` with a finite matrix. Returns
 // false only for FocusFallback::InvalidInput.
-bool compute_focus(const FocusCamera& camera, const FocusLight& light, const FocusBox& scene,
-                   const FocusOptions& options, FocusResult& out);
+bool compute_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene, const FocusOptions& options,
+                   FocusResult& out);
 
 const char* focus_method_name(FocusMethod method);        // "psm", "lispsm", "uniform"
 const char* light_kind_name(LightKind kind);              // "point", "inverted_point", "directional"

@@ -39,8 +39,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   const double eye[3] = {0, 2, 5}, target[3] = {0, 0, 0}, up[3] = {0, 1, 0};
-  const geom::FocusCamera camera = geom::focus_camera_look_at(eye, target, up, 60, 1.5, 0.1, 100);
-  geom::FocusLight light;
+  const geom::CameraMatrices camera = geom::camera_look_at(eye, target, up, 60, 1.5, 0.1, 100);
+  geom::Light light;
+  light.type = geom::LightType::Directional;
   light.direction[0] = 0.3, light.direction[1] = -1, light.direction[2] = 0.2;
   const geom::FocusBox box = {{-2, -2, -2}, {2, 2, 2}};
   geom::FocusResult focus;

@@ -1,0 +1,186 @@
+// render/render.h: the GL layer the apps share (geomview, geombench, the GL
+// tests): one state struct and the functions that drive it. Library
+// geom::render (render/), above libgeom; OpenGL 4.5 core, shaders read at run
+// time from shaders/.
+//
+// Layout of render/src (docs/architecture.md draws the layers):
+//   gl.h, gl.cpp ........... RAII GL names, programs (cached by file list), render targets, uniforms, pass timer
+//   state.h ................ the state struct, a caster's GL buffers, the per-frame context (Frame)
+//   casters.cpp ............ BakedView (below) -> GL buffers; the in-process bake of a scene's casters
+//   frame.cpp .............. draw_frame: state reset, casters, the technique's light passes, shading, inspection
+//   techniques.cpp ......... THE table of techniques (name, buffers it needs, its pass functions)
+//   shadow_map.cpp ......... ssm, pcf: the depth map with slope-scaled bias, shared by every map technique
+//   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame
+//   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
+//   esm.cpp, edsm.cpp ...... extended shadow map (seed 000), edge distance shadow map (seed 001)
+//   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (seed 004)
+//   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, seed 001's baseline)
+//   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; seed 001 Sect. 6)
+//   inspection.cpp ......... the overlay: topology problems, silhouette quads, the focus body
+//   platform.cpp ........... EGL (headless) and GLFW (window) glue, render/platform.h
+//
+// Adding a technique is one file plus one table row: write render/src/<name>.cpp
+// with its light passes (`bool <name>_passes(Frame&)`: render what it needs, then
+// set Frame::lookup to its shaders/lookup_<name>.frag and Frame::shadow_texture),
+// declare it in state.h, add its row to kTechniques in techniques.cpp and its
+// name to the Technique enum below (the row order is the enum order).
+//
+// A frame = the technique's light passes (shadow map, cube map, extended map,
+// stencil volumes...) then one shared shading pass: the technique decides lit
+// or shadowed per fragment (shaders/lookup_*.frag), shaders/shade.frag shades.
+// Conventions are those of geom/scene.h (Light, Camera) and
+// geom/shadow_reference.h (the mask).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geom/baked_reader.h"
+#include "geom/esm_quads.h"
+#include "geom/png.h"
+#include "geom/scene.h"
+#include "geom/shadow_volume.h"
+#include "geom/silhouette.h"
+
+namespace render {
+
+enum class Technique {
+  Ssm, Pcf, Esm, Edsm, Sv, SvZPass, SvZFail, Cube, Psm, Lispsm, Uniform, EsmExact, Sssm, EdsmSoft, PcfSoft
+};
+
+// The names of --technique, in order; only techniques this build renders.
+std::vector<Technique> available_techniques();
+const char* technique_name(Technique t);
+bool parse_technique(const std::string& name, Technique& out);  // false: unknown or unavailable
+bool technique_has_map(Technique t);                            // false for the shadow volumes (no shadow-map size)
+bool technique_needs_point_light(Technique t);                  // cube: no directional light
+bool technique_is_soft(Technique t);                            // edsm-soft, pcf-soft: a light fraction (light_radius)
+
+// The silhouette buffers of one caster as the renderer takes them: borrowed
+// arrays, from an in-process bake (geom/silhouette.h) or a baked container
+// (geom/baked_reader.h) alike. Null arrays with `has_*` false: not baked.
+struct BakedView {
+  double origin[3] = {0, 0, 0};   // the caster's local frame (geom/face_planes.h)
+  const float* welded = nullptr;  // xyz per welded vertex (input coordinates)
+  size_t welded_count = 0;
+  const uint32_t* indices = nullptr;  // 3 per triangle, into welded
+  size_t triangle_count = 0;
+  bool has_adjacency = true, has_esm = true, has_volume = true;
+  const uint32_t* adjacency = nullptr;  // 6 per triangle, into welded
+  size_t adjacency_count = 0;
+  const geom::EsmQuad* esm = nullptr;
+  size_t esm_count = 0;
+  const float* esm_planes = nullptr;  // 4 per plane
+  size_t esm_plane_count = 0;
+  const geom::SvSide* sides = nullptr;
+  size_t side_count = 0;
+  const geom::SvCap* caps = nullptr;
+  size_t cap_count = 0;
+  const float* volume_planes = nullptr;
+  size_t volume_plane_count = 0;
+  struct LightVolume {               // the exact volume of one static light
+    double light[4] = {0, 0, 0, 0};  // homogeneous, input coordinates
+    const geom::SvSide* sides = nullptr;
+    size_t side_count = 0;
+    const geom::SvCap* caps = nullptr;
+    size_t cap_count = 0;
+    const float* planes = nullptr;
+    size_t plane_count = 0;
+  };
+  std::vector<LightVolume> light_volumes;
+};
+
+// The view of an in-process bake (borrows `buffers`).
+BakedView baked_view(const geom::SilhouetteBuffers& buffers);
+// The view of a baked container's one caster (borrows the reader's bytes);
+// false with `error` when it has no usable positions and indices.
+bool baked_view(const geom::baked::Reader& reader, BakedView& out, std::string& error);
+
+// Mask: 255 lit, 0 shadow, 128 no geometry; Fraction (the soft techniques): the
+// light fraction of each visible pixel, 0..255 (128 also where no geometry is).
+enum class Output { Color, Mask, Fraction };
+
+struct PassTime {
+  std::string pass;
+  double ms = 0;
+};
+
+struct FrameSettings {
+  Technique technique = Technique::Ssm;
+  Output output = Output::Color;
+  int shadow_map_size = 1024;
+  bool inspect = false;  // overlay: silhouette quads, topology problems, focus body (colour output only)
+  // The light's radius for the soft techniques (edsm-soft, pcf-soft): a disc facing
+  // the receiver, world units for a point or spot light, radians (its angular
+  // radius) for a directional light. 0: a point light (their hard answer).
+  float light_radius = 0;
+};
+
+struct State;  // the one state struct (GL objects, buffers, cached programs)
+
+struct StateDeleter {
+  void operator()(State* s) const;
+};
+using StatePtr = std::unique_ptr<State, StateDeleter>;
+
+// Uploads the scene's triangles (the current GL context must stay current for
+// the life of the state). `shader_dir` holds the shaders/ files. The casters'
+// silhouette buffers (one per glTF mesh instance, or the whole scene) are baked
+// in process on first use and uploaded from their BakedView.
+StatePtr create_state(const geom::Scene& scene, const std::string& shader_dir, std::string& error);
+
+// Reads a baked container (geom/baked_reader.h, written by `geombake bake`) and
+// draws its buffers: the welded triangles (`positions`, `indices`) as the scene,
+// its ESM quads, shadow volume and adjacency buffer as one caster, as they lie
+// (its BakedView). `scene` receives the triangles and the baked static lights
+// (for a default light and the reference). Every index in the file is checked
+// before upload.
+StatePtr create_state_baked(const void* bytes, size_t size, const std::string& shader_dir, geom::Scene& scene,
+                            std::string& error);
+
+// Renders one frame into an offscreen framebuffer of camera.width x
+// camera.height and reads it back into `image` (Output::Mask: 1 channel, 255
+// lit / 0 shadow / 128 background; Output::Color: 3 channels), top row first.
+// `times` receives the time of each pass (GPU timer queries, or CPU wall time
+// around glFinish on a software rasterizer: see timing_kind()).
+bool render(State& state, const geom::Camera& camera, const geom::Light& light, const FrameSettings& settings,
+            geom::PngImage& image, std::vector<PassTime>& times, std::string& error);
+
+// Draws the frame into the default framebuffer (window mode), no read back.
+bool render_to_window(State& state, const geom::Camera& camera, const geom::Light& light, const FrameSettings& settings,
+                      int width, int height, std::vector<PassTime>& times, std::string& error);
+
+std::string renderer_name(State& state);  // GL_RENDERER
+std::string timing_kind(State& state);    // "GPU timer queries" or "wall time around glFinish (software)"
+
+// Bounding sphere of the scene (centre xyz, radius), for default cameras and light frusta.
+void scene_bounds(const State& state, float out[4]);
+
+// The default camera: the whole bounding sphere of the scene in view (both
+// fields of view), seen from the front, right and above, where "above" is
+// along `up_axis` (0 x, 1 y, 2 z: Quake 3's maps and models are Z-up).
+// geomview's default camera and its reset key.
+geom::Camera default_view(const State& state, int width, int height, int up_axis);
+// The earlier fixed view (centre lowered by a fifth of the radius, at 0.9
+// radius: close, may crop): the golden images and geombench's scenes use it.
+geom::Camera default_view(const State& state, int width, int height);
+
+// What the inspection overlay draws, counted as the topology report counts it
+// (geom/topology.h, per caster, summed): its legend. Bakes the casters first.
+// `report`: the topology report of the whole scene after an exact weld (what
+// `geombake info` prints); `drawn`: what the overlay draws, per caster (an
+// edge that two casters share counts in each, never as non-manifold).
+struct InspectionCounts {
+  struct Kinds {
+    uint64_t boundary_edges = 0, non_manifold_edges = 0, inconsistent_edges = 0, degenerate_faces = 0;
+  };
+  Kinds report, drawn;
+  size_t casters = 0;
+};
+bool inspection_counts(State& state, InspectionCounts& out, std::string& error);
+// The overlay's colours (RGB 0..1), for legends and the tests that count its pixels.
+enum class InspectKind { Boundary, NonManifold, Inconsistent, Degenerate, Silhouette, FocusBody };
+void inspection_colour(InspectKind kind, float rgb[3]);
+
+}  // namespace render

@@ -1,0 +1,70 @@
+// cube.cpp: the omnidirectional shadow map of a point or spot light (seed
+// 003, 12.3-12.4): an R32F cube of squared distances and a cube depth buffer
+// for the z-test, all six faces rendered in one layered pass
+// (shaders/cube_distance.*); the lookup is shaders/lookup_cube.frag.
+#include <algorithm>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "state.h"
+
+namespace render {
+namespace {
+
+void ensure_cube(State& s, int n) {
+  Target& t = s.cube;
+  if (t.width == n) return;
+  t = Target();
+  t.width = t.height = n;
+  glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &t.color.id);
+  glTextureStorage2D(t.color, 1, GL_R32F, n, n);
+  glTextureParameteri(t.color, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(t.color, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  label(GL_TEXTURE, t.color, "cube squared distance");
+  glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &t.depth.id);
+  glTextureStorage2D(t.depth, 1, GL_DEPTH_COMPONENT32F, n, n);
+  label(GL_TEXTURE, t.depth, "cube depth");
+  glCreateFramebuffers(1, &t.fbo.id);
+  glNamedFramebufferTexture(t.fbo, GL_COLOR_ATTACHMENT0, t.color, 0);
+  glNamedFramebufferTexture(t.fbo, GL_DEPTH_ATTACHMENT, t.depth, 0);
+  label(GL_FRAMEBUFFER, t.fbo, "cube map");
+}
+
+}  // namespace
+
+bool cube_passes(Frame& f) {
+  State& s = f.s;
+  const int n = f.n;
+  if (f.light.position.w == 0) {
+    f.error = "technique cube needs a point or spot light (--light X,Y,Z,1)";
+    return false;
+  }
+  ensure_cube(s, n);
+  const glm::vec3 L(f.light.position);
+  const float d = glm::length(glm::vec3(s.bounds) - L), r = s.bounds.w;
+  const float near_plane = std::max(r * 1e-3f, (d - r) * 0.5f), far_plane = (d + r) * 1.01f;
+  // The six faces, GL order +X -X +Y -Y +Z -Z (geom/focus.h, seed 003).
+  const double position[3] = {L.x, L.y, L.z};
+  double faces[6][16];
+  geom::focus_cube_faces(position, near_plane, far_plane, faces);
+  GLuint p = program(s.programs, {"cube_distance.vert", "cube_distance.geom", "cube_distance.frag"}, f.error);
+  if (!p) return false;
+  for (int i = 0; i < 6; ++i) {
+    const std::string name = "u_face[" + std::to_string(i) + "]";
+    set(p, name.c_str(), at(glm::make_mat4(faces[i]), s.origin));
+  }
+  set(p, "u_light_position", glm::vec3(glm::dvec3(L) - s.origin));
+  f.timer.begin(f.focused ? "cube map (focus: point light among the receivers)" : "cube map");
+  glBindFramebuffer(GL_FRAMEBUFFER, s.cube.fbo);
+  glViewport(0, 0, n, n);
+  const float far_value = 3.0e38f;
+  glClearNamedFramebufferfv(s.cube.fbo, GL_COLOR, 0, &far_value);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glUseProgram(p);
+  draw_scene(s);
+  f.timer.end();
+  f.shadow_texture = s.cube.color;
+  f.lookup = "lookup_cube.frag";
+  return true;
+}
+
+}  // namespace render

@@ -1,0 +1,193 @@
+// state.h (private to render/): the one state struct, a caster's GL buffers,
+// the per-frame context every technique's passes take, and the functions the
+// technique files share. See render/render.h for the file map.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "geom/focus.h"
+#include "gl.h"
+
+namespace render {
+
+// The static buffers of one caster (geom/silhouette.h), in its local frame,
+// uploaded from a BakedView (casters.cpp).
+struct Caster {
+  glm::vec3 lo{0}, hi{0};  // world bounding box
+  glm::dvec3 origin{0};    // local frame origin (geom/face_planes.h)
+  // Edge distance shadow map: welded positions (world) + GL_TRIANGLES_ADJACENCY indices.
+  Buffer welded, adjacency;
+  VertexArray adjacency_vao;
+  GLsizei adjacency_count = 0;
+  // Extended shadow map quads and their planes (texture buffer).
+  Buffer esm_records, esm_plane_buffer;
+  Texture esm_planes;
+  VertexArray esm_vao;
+  GLsizei esm_count = 0;
+  // Shadow volume sides, caps and planes.
+  Buffer sv_sides, sv_caps, sv_plane_buffer;
+  Texture sv_planes;
+  VertexArray sides_vao, caps_vao;
+  GLsizei side_count = 0, cap_count = 0;
+  // Exact volumes of the static lights (geom/shadow_volume.h build_light_volume):
+  // used instead of the generic one when the frame's light is one of them.
+  struct LightVolume {
+    glm::dvec4 light{0};  // input coordinates
+    Buffer sides, caps, plane_buffer;
+    Texture planes;
+    VertexArray sides_vao, caps_vao;
+    GLsizei side_count = 0, cap_count = 0;
+  };
+  std::vector<LightVolume> light_volumes;
+  // Inspection lines (world): boundary, non-manifold, inconsistent edges, then degenerate faces' edges.
+  Buffer lines;
+  VertexArray lines_vao;
+  GLsizei line_first[4] = {0, 0, 0, 0}, line_count[4] = {0, 0, 0, 0};
+};
+
+struct State {
+  Programs programs;
+  bool gpu_timers = false;
+  std::string renderer;
+  // Scene: non-indexed triangles, position + face normal per vertex (world space).
+  Buffer scene_vbo;
+  VertexArray scene_vao;
+  GLsizei scene_vertices = 0;
+  glm::vec4 bounds{0, 0, 0, 1};
+  glm::vec3 scene_lo{-1}, scene_hi{1};  // bounding box
+  glm::dvec3 origin{0};  // the scene buffer's local frame (its box centre): far coordinates keep float precision
+  // Render targets, re-created when their size changes.
+  Target camera, shadow_map, cube, edge_map;
+  Sampler depth_sampler;  // reads a depth texture without comparison
+  // esm / edsm: the depth and edge maps of their faces (1 fitted frustum or 6
+  // cube faces) as 2D arrays (silhouette_faces.cpp).
+  Texture face_depth, face_edges;
+  int face_n = 0, face_layers = 0;
+  GLenum face_format = 0;
+  // Silhouette buffers per caster, baked on first use.
+  geom::Scene scene;  // positions, indices, sources: the casters are baked from it
+  bool casters_built = false;
+  std::vector<Caster> casters;
+  // A baked file's casters come with it; the buffers it lacks are named here.
+  bool baked = false, baked_esm = true, baked_volume = true, baked_adjacency = true;
+};
+
+// The frame's light in the form the passes use (floats, as the shaders take them).
+struct FrameLight {
+  glm::vec4 position{0, 10, 0, 1};  // homogeneous (geom::light_homogeneous)
+  bool spot = false;
+  glm::vec3 spot_direction{0, -1, 0};  // where the spot shines
+  float spot_angle = 0;                // radians, axis to cone edge
+};
+FrameLight frame_light(const geom::Light& light);
+
+// The frame's camera with glm vectors.
+struct View {
+  glm::vec3 eye, target, up;
+  float fovy_deg, near_plane, far_plane;
+};
+
+// A light's view and projection (the single shadow map's, or a focused matrix).
+struct LightFrame {
+  glm::mat4 proj{1}, view{1};
+  glm::mat4 clip() const { return proj * view; }
+};
+
+// Everything one frame's passes read, and what the light passes leave for the
+// shading pass.
+struct Frame {
+  Frame(State& state, const View& v, const FrameLight& l, const FrameSettings& settings, PassTimer& pass_timer,
+        std::string& error_out)
+      : s(state), view(v), light(l), fs(settings), t(settings.technique), timer(pass_timer), error(error_out) {}
+  State& s;
+  const View& view;
+  const FrameLight& light;
+  const FrameSettings& fs;
+  Technique t;  // the technique drawn: a focused map may fall back to cube
+  int n = 0;    // shadow-map size
+  int w = 0, h = 0;
+  float aspect = 1;
+  glm::dmat4 view_proj{1};
+  PassTimer& timer;
+  std::string& error;
+  // Set by the technique's light passes:
+  std::string lookup = "lookup_none.frag";  // its shaders/lookup_*.frag
+  std::string lookup_extra;                 // a shader file the lookup links with ("": none)
+  GLuint shadow_texture = 0, second_texture = 0;
+  LightFrame light_frame;  // u_light_matrix
+  bool focused = false;    // psm, lispsm, uniform (even when drawn as cube)
+  int faces = 0;           // esm, edsm: 1 fitted frustum or 6 cube faces (shaders/lookup_faces.frag)
+  glm::mat4 face_clip[6];  // their light clip matrices (world)
+};
+
+// The technique table (techniques.cpp): one row per Technique, in enum order.
+struct TechniqueRow {
+  Technique id;
+  const char* name;
+  bool needs_esm, needs_volume, needs_adjacency;  // the caster buffers it draws
+  bool has_map;
+  bool needs_point_light;
+  bool (*light_passes)(Frame& f);  // the passes before shading; sets lookup and textures
+  // The shading (null: one pass of the shading program); `p` is the program.
+  bool (*shade)(Frame& f, GLuint p);
+};
+const TechniqueRow& technique_row(Technique t);
+
+// Light passes, one family per file.
+bool shadow_map_passes(Frame& f);  // shadow_map.cpp: ssm, pcf
+bool esm_passes(Frame& f);         // esm.cpp
+bool edsm_passes(Frame& f);        // edsm.cpp
+bool focused_passes(Frame& f);     // focused.cpp: psm, lispsm, uniform
+bool cube_passes(Frame& f);        // cube.cpp
+bool sssm_passes(Frame& f);        // sssm.cpp
+bool sssm_shade(Frame& f, GLuint p);
+bool edsm_soft_passes(Frame& f);  // soft.cpp: edsm-soft
+bool edsm_soft_shade(Frame& f, GLuint p);
+bool pcf_soft_passes(Frame& f);  // soft.cpp: pcf-soft
+bool pcf_soft_shade(Frame& f, GLuint p);
+bool volume_shade(Frame& f, GLuint p);                     // shadow_volume.cpp: sv, sv-zpass, sv-zfail
+bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
+
+// Shared by the map techniques (shadow_map.cpp).
+LightFrame light_frame(const State& s, const FrameLight& light);
+// The depth map from the light with slope-scaled bias into s.shadow_map
+// (`linear_light`: the linear light depth of the focused maps).
+bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool linear_light);
+// Sets the depth map's filter for the technique and makes it the shadow texture.
+void finish_map(Frame& f);
+void ensure_edge_map(State& s, int n, GLenum format);
+GLuint depth_sampler(State& s);
+// The light as shade.frag's u_light: homogeneous, in the scene buffer's local frame.
+glm::vec4 local_light(const State& s, const FrameLight& light);
+// u_depth_range of shaders/light_depth.frag.
+glm::vec2 light_depth_range(const State& s, const FrameLight& light);
+
+// light_fit.cpp: the single-map techniques' light frustum fitted to what the
+// camera sees (the uniform focused matrix of H). False when the light needs
+// cube faces (a point light among or around the receivers).
+bool fitted_light_frame(Frame& f, LightFrame& out);
+// silhouette_faces.cpp: esm and edsm drawn with the fitted frustum or as six
+// cube faces: `draw_face` draws the depth map and the edge map of one light
+// clip matrix into s.shadow_map / s.edge_map; the faces are gathered into
+// s.face_depth / s.face_edges (2D arrays), which become the frame's textures.
+bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& light_clip), GLenum edge_format);
+// Clip x (or y, the smaller) per unit of length at w = 1 of a light's clip matrix.
+float projection_scale(const glm::mat4& clip);
+
+// focused.cpp: the focused light matrix of psm / lispsm / uniform, and H.
+geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,
+                        geom::FocusMethod method, bool faces = false);
+
+// casters.cpp
+bool build_casters(State& s, std::string& error);  // bakes and uploads every caster, once
+bool upload_caster(State& s, const BakedView& src, std::string& error);
+glm::vec4 local_light(const Caster& c, const glm::dvec4& light);                   // in a caster's local frame
+const Caster::LightVolume* light_volume(const Caster& c, const glm::vec4& light);  // exact volume, if any
+
+void draw_scene(const State& s);
+
+// frame.cpp: one frame into the framebuffer `fbo` of w x h.
+bool draw_frame(State& s, const View& view, const FrameLight& light, const FrameSettings& fs, GLuint fbo, int w, int h,
+                PassTimer& timer, std::string& error);
+
+}  // namespace render

@@ -1,2 +1,0 @@
-# Runs the geombake binary: build it first.
-add_dependencies(${name} geombake)

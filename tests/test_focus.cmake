@@ -1,2 +1,0 @@
-# test_focus runs `geombake focus` on frame files: build the CLI first.
-add_dependencies(${name} geombake)
