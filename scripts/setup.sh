@@ -9,7 +9,7 @@ PKGS=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libgbm-dev libglfw3-dev
   libembree-dev libmeshoptimizer-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libgmp-dev libmpfr-dev libeigen3-dev libgtest-dev libbenchmark-dev libzip-dev
-  assimp-testmodels openarena-081-maps openarena-081-players openscad-testing-data xvfb xauth
+  assimp-testmodels openarena-081-maps openarena-081-players openscad-testing-data xvfb xauth libimgui-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -2,6 +2,8 @@
 // and the entry points of render/render.h around draw_frame.
 #include "state.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
@@ -163,7 +165,7 @@ bool render(State& s, const geom::Camera& camera, const geom::Light& light, cons
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  const int channels = fs.output == Output::Mask ? 1 : 3;
+  const int channels = fs.output == Output::Color ? 3 : 1;
   image.width = w, image.height = h, image.channels = channels;
   image.pixels.resize(size_t(w) * h * channels);
   for (int y = 0; y < h; ++y)  // GL's first row is the bottom one
@@ -207,6 +209,39 @@ geom::Camera default_view(const State& s, int width, int height) {
   v.fovy_deg = 50;
   v.near_plane = s.bounds.w * 0.01f;
   v.far_plane = s.bounds.w * 100.0f;
+  return v;
+}
+
+geom::Camera default_view(const State& s, int width, int height, int up_axis) {
+  geom::Camera v;
+  v.width = width, v.height = height;
+  // Right-handed frames with front = right x up: y-up looks along -z, z-up along +y.
+  static const glm::vec3 kRight[3] = {{0, 1, 0}, {1, 0, 0}, {1, 0, 0}}, kUp[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int a = std::clamp(up_axis, 0, 2);
+  const glm::vec3 right = kRight[a], up = kUp[a], front = glm::cross(right, up);
+  const float radius = std::max(s.bounds.w, 1e-3f);
+  v.fovy_deg = 50;
+  // The eye looks at the box centre along `back` (from the front, right and
+  // above); its distance is the least that keeps the 8 corners of the box
+  // inside both fields of view, with a 6% margin.
+  const glm::vec3 target = (s.scene_lo + s.scene_hi) * 0.5f;
+  const glm::vec3 back = glm::normalize(0.45f * right + 0.5f * up + 1.0f * front);
+  const glm::vec3 side = glm::normalize(glm::cross(up, back)), top = glm::cross(back, side);
+  const float tan_v = std::tan(glm::radians(v.fovy_deg) * 0.5f) / 1.06f;
+  const float tan_h = tan_v * float(width) / float(std::max(height, 1));
+  float distance = radius * 1e-3f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 p(c & 1 ? s.scene_hi.x : s.scene_lo.x, c & 2 ? s.scene_hi.y : s.scene_lo.y,
+                      c & 4 ? s.scene_hi.z : s.scene_lo.z);
+    const glm::vec3 d = p - target;
+    const float along = glm::dot(d, back);  // towards the eye
+    distance =
+        std::max({distance, along + std::fabs(glm::dot(d, side)) / tan_h, along + std::fabs(glm::dot(d, top)) / tan_v});
+  }
+  const glm::vec3 eye = target + back * distance;
+  for (int k = 0; k < 3; ++k) v.eye[k] = eye[k], v.target[k] = target[k], v.up[k] = up[k];
+  v.near_plane = std::max(distance - radius, radius * 0.002f) * 0.5f;
+  v.far_plane = distance + radius * 100.0f;
   return v;
 }
 

@@ -112,6 +112,7 @@ struct Frame {
   std::string& error;
   // Set by the technique's light passes:
   std::string lookup = "lookup_none.frag";  // its shaders/lookup_*.frag
+  std::string lookup_extra;                 // a shader file the lookup links with ("": none)
   GLuint shadow_texture = 0, second_texture = 0;
   LightFrame light_frame;  // u_light_matrix
   bool focused = false;    // psm, lispsm, uniform (even when drawn as cube)
@@ -133,11 +134,17 @@ struct TechniqueRow {
 const TechniqueRow& technique_row(Technique t);
 
 // Light passes, one family per file.
-bool shadow_map_passes(Frame& f);                          // shadow_map.cpp: ssm, pcf
-bool esm_passes(Frame& f);                                 // esm.cpp
-bool edsm_passes(Frame& f);                                // edsm.cpp
-bool focused_passes(Frame& f);                             // focused.cpp: psm, lispsm, uniform
-bool cube_passes(Frame& f);                                // cube.cpp
+bool shadow_map_passes(Frame& f);  // shadow_map.cpp: ssm, pcf
+bool esm_passes(Frame& f);         // esm.cpp
+bool edsm_passes(Frame& f);        // edsm.cpp
+bool focused_passes(Frame& f);     // focused.cpp: psm, lispsm, uniform
+bool cube_passes(Frame& f);        // cube.cpp
+bool sssm_passes(Frame& f);        // sssm.cpp
+bool sssm_shade(Frame& f, GLuint p);
+bool edsm_soft_passes(Frame& f);  // soft.cpp: edsm-soft
+bool edsm_soft_shade(Frame& f, GLuint p);
+bool pcf_soft_passes(Frame& f);  // soft.cpp: pcf-soft
+bool pcf_soft_shade(Frame& f, GLuint p);
 bool volume_shade(Frame& f, GLuint p);                     // shadow_volume.cpp: sv, sv-zpass, sv-zfail
 bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
 

@@ -1,0 +1,228 @@
+// window.cpp: the window app (app.h): an orbit camera, keys, the ImGui panels
+// and HUD (ui.cpp), the error of the current view on E with the wrong pixels
+// as an overlay, the compare grid on C, the technique in the window title.
+#define GL_GLEXT_PROTOTYPES 1
+#define GLFW_INCLUDE_GLCOREARB 1
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "app.h"
+#include "cli/args.h"
+#include "compare.h"
+#include "ui.h"
+
+namespace viewer {
+namespace {
+
+glm::vec3 vec3(const float v[3]) { return glm::vec3(v[0], v[1], v[2]); }
+void store(float out[3], glm::vec3 v) { out[0] = v.x, out[1] = v.y, out[2] = v.z; }
+
+int key_of(char c) {
+  switch (c) {
+    case '[':
+      return GLFW_KEY_LEFT_BRACKET;
+    case ']':
+      return GLFW_KEY_RIGHT_BRACKET;
+    case 'q':
+      return GLFW_KEY_ESCAPE;
+    default:
+      return c >= 'a' && c <= 'z' ? GLFW_KEY_A + (c - 'a') : -1;
+  }
+}
+
+// Everything the frame depends on, to know when a measured error or a grid is stale.
+std::string view_key(const geom::Camera& v, const geom::Light& l, const render::FrameSettings& s, int w, int h) {
+  char b[512];
+  std::snprintf(b, sizeof b, "%g %g %g %g %g %g %g %g %g|%d %g %g %g %g %g %g %g|%d %d %d|%d %d", v.eye[0], v.eye[1],
+                v.eye[2], v.target[0], v.target[1], v.target[2], v.up[0], v.up[1], v.up[2], int(l.type), l.position[0],
+                l.position[1], l.position[2], l.direction[0], l.direction[1], l.direction[2], l.outer_cone,
+                int(s.technique), s.shadow_map_size, int(s.inspect), w, h);
+  return b;
+}
+
+}  // namespace
+
+int run_window(Options& o, Session& s) {
+  if (!ui_init_window()) return fail("Dear ImGui could not start on the window");
+  geom::Camera& view = o.view;
+  geom::Light& light = o.light;
+  WindowModel m;
+  m.all = render::available_techniques();
+  m.settings = o.settings;
+  for (size_t i = 0; i < m.all.size(); ++i)
+    if (m.all[i] == o.techniques[0]) m.current = i;
+  m.compare_pick.assign(m.all.size(), false);
+  const std::vector<render::Technique> picks =
+      o.compare.empty() ? std::vector<render::Technique>{render::Technique::Ssm, render::Technique::Pcf,
+                                                         render::Technique::Edsm, render::Technique::Sv}
+                        : o.compare;
+  for (render::Technique t : picks)
+    for (size_t i = 0; i < m.all.size(); ++i)
+      if (m.all[i] == t) m.compare_pick[i] = true;
+  m.compare = !o.compare.empty();
+  m.light_kind = light.type == geom::LightType::Directional ? 2 : light.type == geom::LightType::Spot ? 1 : 0;
+  float bounds[4];
+  render::scene_bounds(*s.state, bounds);
+  const glm::vec3 centre(bounds[0], bounds[1], bounds[2]);
+  {
+    double h[4];
+    geom::light_homogeneous(light, h);
+    store(m.light_position, glm::vec3(float(h[0]), float(h[1]), float(h[2])));
+  }
+  auto apply_light = [&] {  // the panel's light kind and position into the frame's light
+    const glm::vec3 p = vec3(m.light_position);
+    light = geom::Light();
+    light.type = m.light_kind == 2   ? geom::LightType::Directional
+                 : m.light_kind == 1 ? geom::LightType::Spot
+                                     : geom::LightType::Point;
+    const glm::vec3 axis = glm::length(centre - p) > 0 ? centre - p : glm::vec3(0, -1, 0);
+    for (int k = 0; k < 3; ++k) light.position[k] = p[k], light.direction[k] = m.light_kind == 2 ? -p[k] : axis[k];
+    if (m.light_kind == 2 && glm::length(p) == 0) light.direction[1] = -1;
+    light.outer_cone = glm::radians(35.0);
+  };
+  bool quit = false;
+  int fb_w = 0, fb_h = 0;
+  auto on_key = [&](int key) {
+    if (key == GLFW_KEY_ESCAPE) quit = true;
+    if (key == GLFW_KEY_T) m.current = (m.current + 1) % m.all.size();
+    if (key == GLFW_KEY_I) m.settings.inspect = !m.settings.inspect;
+    if (key == GLFW_KEY_E) m.measure = true;
+    if (key == GLFW_KEY_C) m.compare = !m.compare;
+    if (key == GLFW_KEY_R) m.reset_camera = true;
+    if (key == GLFW_KEY_H) m.show_panels = !m.show_panels;
+    if (key == GLFW_KEY_RIGHT_BRACKET) m.settings.shadow_map_size = std::min(m.settings.shadow_map_size * 2, 8192);
+    if (key == GLFW_KEY_LEFT_BRACKET) m.settings.shadow_map_size = std::max(m.settings.shadow_map_size / 2, 64);
+    if (key == GLFW_KEY_L) {
+      m.light_kind = (m.light_kind + 1) % 3;
+      if (m.light_kind == 0 && glm::length(vec3(m.light_position) - centre) > 1e4f * bounds[3])
+        store(m.light_position, centre + glm::normalize(vec3(m.light_position)) * bounds[3] * 2.0f);
+      m.light_changed = true;
+    }
+  };
+  render::PlatformEvents events;
+  events.key = [&](int key) {
+    if (!ui_wants_keyboard()) on_key(key);
+  };
+  events.drag = [&](double dx, double dy, int button) {
+    if (ui_wants_mouse()) return;
+    glm::vec3 offset = vec3(view.eye) - vec3(view.target);
+    if (button == 0) {
+      const glm::vec3 up = glm::normalize(vec3(view.up));
+      offset = glm::vec3(glm::rotate(glm::mat4(1), float(-dx * 0.01), up) * glm::vec4(offset, 0));
+      const glm::vec3 right = glm::normalize(glm::cross(offset, up));
+      const glm::vec3 tilted = glm::vec3(glm::rotate(glm::mat4(1), float(dy * 0.01), right) * glm::vec4(offset, 0));
+      if (std::fabs(glm::dot(glm::normalize(tilted), up)) < 0.99f) offset = tilted;
+    } else {
+      offset *= float(std::exp(dy * 0.01));
+    }
+    store(view.eye, vec3(view.target) + offset);
+  };
+  events.scroll = [&](double dy) {
+    if (ui_wants_mouse()) return;
+    store(view.eye, vec3(view.target) + (vec3(view.eye) - vec3(view.target)) * float(std::exp(-dy * 0.1)));
+  };
+  std::string error, title, measured_key, grid_key;
+  Reference ref;
+  size_t script_at = 0;
+  int frames_after_script = 0;
+  const bool gpu = render::timing_kind(*s.state).rfind("GPU", 0) == 0;
+  while (!s.platform->should_close() && !quit) {
+    s.platform->framebuffer_size(fb_w, fb_h);
+    if (script_at < o.script.size()) on_key(key_of(o.script[script_at++]));
+    if (m.light_changed) apply_light(), m.light_changed = false;
+    if (m.reset_camera) {
+      const geom::Camera framed = framed_view(s, fb_w, fb_h);
+      store(view.eye, vec3(framed.eye)), store(view.target, vec3(framed.target)), store(view.up, vec3(framed.up));
+      view.fovy_deg = framed.fovy_deg, view.near_plane = framed.near_plane, view.far_plane = framed.far_plane;
+      m.reset_camera = false;
+    }
+    m.settings.technique = m.all[m.current];
+    view.width = std::max(fb_w, 1), view.height = std::max(fb_h, 1);
+    const std::string key = view_key(view, light, m.settings, fb_w, fb_h);
+    const std::string name = render::technique_name(m.settings.technique);
+    const std::string want_title = "geomview: " +
+                                   (m.compare ? std::string("compare grid")
+                                              : name + (render::technique_has_map(m.settings.technique)
+                                                            ? " " + std::to_string(m.settings.shadow_map_size)
+                                                            : std::string())) +
+                                   " - " + o.file;
+    if (want_title != title) glfwSetWindowTitle(glfwGetCurrentContext(), (title = want_title).c_str());
+    if (m.settings.inspect && !m.counts_valid) m.counts_valid = render::inspection_counts(*s.state, m.counts, error);
+    if (fb_w > 0 && fb_h > 0 && m.compare) {
+      std::vector<render::Technique> picked;
+      for (size_t i = 0; i < m.all.size() && picked.size() < 12; ++i)
+        if (m.compare_pick[i]) picked.push_back(m.all[i]);
+      if (picked.empty()) picked.push_back(m.settings.technique);
+      std::string gk = key;
+      for (render::Technique t : picked) gk += " " + std::to_string(int(t));
+      if (gk != grid_key) {
+        const int cols = grid_columns(picked.size()), rows = int((picked.size() + size_t(cols) - 1) / size_t(cols));
+        geom::Camera panel = view;
+        panel.width = std::max(16, (fb_w - 2 * (cols - 1)) / cols);
+        panel.height = std::max(16, (fb_h - 2 * (rows - 1)) / rows);
+        Grid grid;
+        if (render_grid(*s.state, s.scene, picked, panel, light, m.settings, true, grid, error)) {
+          std::vector<uint8_t> rgba(size_t(grid.image.width) * grid.image.height * 4, 255);
+          for (size_t i = 0; i < size_t(grid.image.width) * grid.image.height; ++i)
+            for (int c = 0; c < 3; ++c) rgba[4 * i + c] = grid.image.pixels[3 * i + c];
+          m.grid_texture = ui_upload_rgba(m.grid_texture, rgba.data(), grid.image.width, grid.image.height);
+          m.grid_w = grid.image.width, m.grid_h = grid.image.height, m.grid_labels = grid.labels;
+          for (const Figures& f : grid.figures)
+            for (const std::string& l : hud_lines(f, false)) std::printf("grid: %s\n", l.c_str());
+          std::fflush(stdout);
+        } else {
+          m.status = error, m.compare = false;
+        }
+        grid_key = gk;
+      }
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      glClearColor(0.05f, 0.05f, 0.05f, 1);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    } else if (fb_w > 0 && fb_h > 0) {
+      std::vector<render::PassTime> times;
+      if (!render::render_to_window(*s.state, view, light, m.settings, fb_w, fb_h, times, error)) {
+        m.status = name + ": " + error;
+        cli::warning("%s", m.status.c_str());
+        m.current = (m.current + 1) % m.all.size();
+        times.clear();
+      }
+      m.figures.technique = m.settings.technique, m.figures.map_size = m.settings.shadow_map_size;
+      m.figures.gpu_timers = gpu, m.figures.times = times, m.figures.message.clear();
+      if (m.measure) {
+        m.measure = false;
+        std::vector<uint8_t> overlay;
+        if (make_reference(s.scene, view, light, ref, error) &&
+            measure_error(*s.state, ref, view, light, m.settings, m.figures.error, &overlay, error)) {
+          m.overlay_texture = ui_upload_rgba(m.overlay_texture, overlay.data(), fb_w, fb_h);
+          m.overlay_w = fb_w, m.overlay_h = fb_h, measured_key = key;
+          for (const std::string& l : hud_lines(m.figures)) std::printf("hud: %s\n", l.c_str());
+          std::fflush(stdout);
+          // The mask pass drew into the render layer's own target; redraw the frame for the window.
+          render::render_to_window(*s.state, view, light, m.settings, fb_w, fb_h, times, error);
+        } else {
+          m.status = error;
+        }
+      }
+      if (key != measured_key) m.figures.error.valid = false;
+    }
+    ui_window_frame(m, fb_w, fb_h);
+    if (m.quit) quit = true;
+    if (!o.screenshot.empty() && script_at >= o.script.size() && ++frames_after_script >= 3) {
+      geom::PngImage shot;
+      if (!ui_read_window(fb_w, fb_h, shot) || !geom::write_png(o.screenshot, shot, error))
+        return fail("screenshot: " + error);
+      quit = true;
+    }
+    s.platform->swap_and_poll(events);
+  }
+  ui_delete_texture(m.overlay_texture);
+  ui_delete_texture(m.grid_texture);
+  ui_shutdown();
+  return 0;
+}
+
+}  // namespace viewer
