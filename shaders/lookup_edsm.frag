@@ -5,14 +5,17 @@
 // silhouette (the filtered comparison strictly between 0 and 1); there the
 // signed edge distance is reconstructed by bilinear interpolation of the
 // distance map (Sect. 3.1.1: exact for one straight edge) and its sign decides:
-// positive = the occluder's side = shadow. Two fallbacks to the nearest texel's
-// comparison (a simple shadow map's answer) are kept, measured (geombench,
-// 640x480, jenga at 512, error_visible): where one of the four texels holds no
-// edge (nothing to interpolate), and where a texel's side of its edge disagrees
-// with its own comparison (crossing shadows, or a receiver's outline and a
-// caster's edge in one texel: the thesis's Sect. 5.2 failure case): without it
-// 5.60%, with it 1.24% (ssm 1.68%). The thesis has no receiver-in-front-of-edge
-// guard and neither has this lookup any more (with it: 1.26%, default 0.015% vs 0.006%).
+// positive = the occluder's side = shadow. Three fallbacks to the nearest
+// texel's comparison (a simple shadow map's answer) are kept for the thesis's
+// Sect. 5.2 failure cases, each measured (geombench, 640x480, error_visible):
+//  - one of the four texels holds no edge: nothing to interpolate;
+//  - the receiver is not behind the stored edges (1e-4 window depth): its own
+//    outline, where the comparison is partial from its slope alone. Without it
+//    jenga@512 0.62% (with it 0.65%), default@512 0.006% (0.014%), but the
+//    wide-depth alley@1024 8.2% against 2.7% with it (ssm 3.4%): kept;
+//  - a texel's side of its edge disagrees with its own comparison (crossing
+//    shadows, a receiver's outline and a caster's edge in one texel): without
+//    it jenga@512 5.60%, with it 1.24% (before the depth-resolved priority).
 vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and its clip position
 uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
 uniform sampler2DArray u_distance_map;      // RG32F: signed distance in texels, edge depth
@@ -32,11 +35,14 @@ float shadow_visibility(vec3 world, vec3 normal) {
   float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
   if (all(equal(g, vec4(g.x)))) return g.x;  // fully lit or fully shadowed
   float d[4];
+  float edge_depth = 0.0;
   for (int k = 0; k < 4; ++k) {
     vec2 t = texelFetch(u_distance_map, ivec3(clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), layer), 0).rg;
     if (abs(t.r) > 1.0e6) return nearest;
     d[k] = t.r;
+    edge_depth = max(edge_depth, t.g);
   }
+  if (p.z <= edge_depth + 1.0e-4) return nearest;  // the receiver's own outline
   // Each texel's side of its edge must agree with its own depth comparison
   // (crossing shadows: a texel on an edge's lit side may be shadowed by another
   // occluder); otherwise the nearest comparison stands.
