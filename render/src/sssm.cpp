@@ -13,7 +13,9 @@ namespace render {
 bool sssm_passes(Frame& f) {
   State& s = f.s;
   const int n = f.n;
-  f.light_frame = light_frame(s, f.light);
+  // The frustum fitted to what the camera sees, as ssm's and edsm's
+  // (light_fit.cpp); where that needs cube faces, the scene-wide one.
+  if (!fitted_light_frame(f, f.light_frame)) f.light_frame = light_frame(s, f.light);
   const glm::mat4 light_clip = f.light_frame.clip();
   if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
   ensure_edge_map(s, n, GL_RG32UI);  // the point (2 x snorm16), the edge depth's bits
