@@ -14,16 +14,18 @@
 // behind the silhouette edges stored around it (its own silhouette from the
 // light, where the comparisons differ from the surface's slope alone), the
 // nearest depth sample's comparison stands, as in lookup_edsm.frag.
-uniform mat4 u_light_matrix;
-uniform sampler2DShadow u_shadow_map;  // comparison sampler, gathered
-uniform usampler2D u_edge_map;         // RG32UI: the silhouette point (offset from the cell's centre, 2 x snorm16), edge depth bits
+// The light frame: the fitted frustum or six cube faces (lookup_faces.frag), as edsm's.
+uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
+uniform usampler2DArray u_edge_map;         // RG32UI: the silhouette point (offset from the cell's centre, 2 x snorm16), edge depth bits
+vec4 face_clip(vec3 world, out int layer);
+int g_layer = 0;
 uniform int u_sssm_paper;              // 0: with the deviation above (default), 1: the paper's lookup
 
 float edge_depth = 0.0;  // the farthest edge among the cells read
 
 vec2 point_at(ivec2 cell, ivec2 size) {
   if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, size))) return vec2(0.0);
-  uvec2 t = texelFetch(u_edge_map, cell, 0).rg;
+  uvec2 t = texelFetch(u_edge_map, ivec3(cell, g_layer), 0).rg;
   edge_depth = max(edge_depth, uintBitsToFloat(t.g));
   return 0.5 * unpackSnorm2x16(t.r);
 }
@@ -39,16 +41,16 @@ float angle(vec2 v) {
 float ccw(float from, float to) { return mod(to - from, 4.0); }
 
 float shadow_visibility(vec3 world, vec3 normal) {
-  vec4 c = u_light_matrix * vec4(world, 1.0);
+  vec4 c = face_clip(world, g_layer);
   if (c.w <= 0.0) return 1.0;
   vec3 p = c.xyz / c.w * 0.5 + 0.5;
   if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
-  ivec2 size = textureSize(u_edge_map, 0);
+  ivec2 size = textureSize(u_edge_map, 0).xy;
   vec2 tc = p.xy * vec2(size) - 0.5;
   ivec2 i = ivec2(floor(tc));          // the cell, and the footprint's lower corner
   vec2 q = tc - floor(tc) - 0.5;       // the sample, from the cell's centre
   // The comparisons of the corners (gather order: (0,1) (1,1) (1,0) (0,0)).
-  vec4 g = textureGather(u_shadow_map, p.xy, p.z);
+  vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(g_layer)), p.z);
   if (all(equal(g, vec4(g.x)))) return g.x;
   vec2 C = point_at(i, size);
   vec2 P = q - C;

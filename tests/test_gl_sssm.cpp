@@ -16,7 +16,7 @@ using render::Technique;
 namespace {
 
 constexpr int kImage = 160;   // pixels per side
-constexpr int kMap = 64;      // shadow-map texels per side
+constexpr int kMap = 32;      // shadow-map texels per side
 constexpr float kEye = 2.5f;  // the camera's height, under the plate (at 3): it sees the ground's [-2.5, 2.5] square
 
 // The ground point of pixel (x, y) of the top-down camera (eye at (0, kEye, 0), 90 degrees, up -z).
@@ -85,8 +85,10 @@ TEST(GlSssm, BoundaryWithinATexelOfAStraightEdgedOccluder) {
     ASSERT_TRUE(state) << error;
     geom::Camera view = camera({0, kEye, 0}, {0, 0, 0}, 90, 0.1f, 100, kImage, kImage);
     set3(view.up, {0, 0, -1});
-    // The texel's footprint on the ground: the map spans the scene's bounding sphere
-    // (orthographic) or its angle (point light, seen from about 9 above the ground).
+    // The texel's footprint on the ground of the scene-wide frustum: the map spans the
+    // scene's bounding sphere (orthographic) or its angle (point light, seen from about
+    // 9 above the ground). sssm draws the frustum fitted to what the camera sees
+    // (light_fit.cpp), no wider: its texels are at most this large.
     float bounds[4];
     render::scene_bounds(*state, bounds);
     float texel = 2 * bounds[3] / kMap;

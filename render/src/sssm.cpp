@@ -10,11 +10,12 @@
 
 namespace render {
 
-bool sssm_passes(Frame& f) {
+namespace {
+
+// One face (silhouette_faces.cpp): the depth map, then the silhouette map beside it.
+bool sssm_face(Frame& f, const glm::mat4& light_clip) {
   State& s = f.s;
   const int n = f.n;
-  f.light_frame = light_frame(s, f.light);
-  const glm::mat4 light_clip = f.light_frame.clip();
   if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
   ensure_edge_map(s, n, GL_RG32UI);  // the point (2 x snorm16), the edge depth's bits
   GLuint p = program(s.programs, {"sssm_edges.vert", "sssm_edges.geom", "sssm_edges.frag"}, f.error);
@@ -38,8 +39,15 @@ bool sssm_passes(Frame& f) {
   }
   glBindSampler(1, 0);
   f.timer.end();
-  finish_map(f);
-  f.second_texture = s.edge_map.color;
+  return true;
+}
+
+}  // namespace
+
+// The light frames of edsm (silhouette_faces.cpp): the frustum fitted to what
+// the camera sees, or six cube faces where a point light's receivers need more.
+bool sssm_passes(Frame& f) {
+  if (!silhouette_faces(f, sssm_face, GL_RG32UI)) return false;
   f.lookup = "lookup_sssm.frag";
   return true;
 }
