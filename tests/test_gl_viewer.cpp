@@ -290,6 +290,41 @@ TEST(GlViewer, InspectionShowsOaDm1sNonManifoldEdges) {
   EXPECT_GT(count_colour(im, yellow), 1000u);
 }
 
+// Issue 17: an installed geomview (bin/ beside share/geom/shaders) reads the
+// shaders beside it, whatever the source tree; GEOMVIEW_SHADERS and --shaders
+// override it.
+TEST(GlViewer, ShadersAreFoundBesideTheBinary) {
+  Scratch s("install");
+  fs::create_directories(s.dir / "prefix/bin");
+  fs::create_directories(s.dir / "prefix/share/geom");
+  fs::copy(GEOMVIEW_EXE, s.dir / "prefix/bin/geomview");
+  fs::copy(GEOM_SHADER_DIR, s.dir / "prefix/share/geom/shaders", fs::copy_options::recursive);
+  const std::string obj = write(s, "scene.obj", kScene);
+  const std::string installed = (s.dir / "prefix/bin/geomview").string();
+  const std::string out = s / "x.png", log = s / "log.txt";
+  auto run = [&](const std::string& prefix, const std::string& args) {
+    const int rc =
+        std::system((prefix + installed + " " + obj + " --size 32x24 -o " + out + " " + args + " 2>" + log).c_str());
+    return std::make_pair(rc, slurp(log));
+  };
+  const auto [rc, err] = run("env -u GEOMVIEW_SHADERS ", "");
+  ASSERT_EQ(rc, 0) << err;
+  EXPECT_NE(err.find("shaders from " + (s.dir / "prefix/share/geom/shaders").string() + "\n"), std::string::npos)
+      << err;
+  const auto [rc2, err2] = run("GEOMVIEW_SHADERS=" + std::string(GEOM_SHADER_DIR) + " ", "");
+  ASSERT_EQ(rc2, 0) << err2;
+  EXPECT_NE(err2.find("shaders from " + std::string(GEOM_SHADER_DIR) + "\n"), std::string::npos) << err2;
+  const auto [rc3, err3] = run("GEOMVIEW_SHADERS=/nonexistent ", "--shaders " + std::string(GEOM_SHADER_DIR));
+  ASSERT_EQ(rc3, 0) << err3;
+  // Without any shaders beside it, the source tree's.
+  fs::remove_all(s.dir / "prefix/share/geom/shaders");
+  const auto [rc4, err4] = run("env -u GEOMVIEW_SHADERS ", "");
+  ASSERT_EQ(rc4, 0) << err4;
+  EXPECT_NE(err4.find("shaders from " + fs::path(GEOM_SHADER_DIR).lexically_normal().string() + "\n"),
+            std::string::npos)
+      << err4;
+}
+
 // The default framing keeps every corner of the scene's box inside the image
 // and looks from above along the up axis: random boxes, every axis, aspects.
 TEST(GlViewer, DefaultViewFitsTheBoundsForAnyUpAxis) {
