@@ -60,6 +60,17 @@ std::vector<std::string> hud_lines(const Figures& f, bool passes) {
   return lines;
 }
 
+std::vector<std::string> compact_lines(const Figures& f) {
+  std::vector<std::string> lines = hud_lines(f, false);
+  if (lines.size() < 3 || !f.message.empty()) return lines;
+  lines[1] = format("%.2f ms", shadow_ms(f.times)) + (f.gpu_timers ? " (GPU)" : " (wall)");
+  if (!f.error.valid) return lines;
+  lines.resize(2);
+  lines.push_back(format("err %.3f%%, bnd %.2f%%", 100 * f.error.visible, 100 * f.error.boundary));
+  if (f.error.has_classes) lines.push_back(format("cast %.2f%%, self %.2f%%", 100 * f.error.cast, 100 * f.error.self));
+  return lines;
+}
+
 bool make_reference(const geom::Scene& scene, const geom::Camera& camera, const geom::Light& light, Reference& out,
                     std::string& error) {
   out.ref = geom::shadow_reference(geom::positions_of(scene.positions.data(), scene.vertex_count()),

@@ -42,6 +42,9 @@ std::vector<std::string> hud_lines(const Figures& f, bool passes = true);
 // "error 0.520% visible, 3.10% boundary" and "per class: 0.400% cast, 0.100% self".
 std::vector<std::string> error_lines(const ErrorFigures& e);
 
+// The same figures in lines of at most about 22 characters, for small grid panels.
+std::vector<std::string> compact_lines(const Figures& f);
+
 // The exact reference of one camera and light (its objects: the connected
 // components of the scene, as geombench takes them).
 struct Reference {
