@@ -4,8 +4,10 @@
 //    depth at the sample (g) are written to the RG32F map;
 //  - corner priority (eq. 3.8, its spherical form near a corner vertex): the
 //    distance to the edge within its span, the distance to the corner vertex
-//    beyond it, written as fragment depth; the depth test keeps the sample of
-//    smallest priority where quads overlap (Sect. 4.2.1);
+//    beyond it, combined with the edge's light depth (the edge nearer the
+//    light wins: a caster's edge over a receiver's own outline) and written as
+//    fragment depth; the depth test keeps the smallest where quads overlap
+//    (Sect. 4.2.1);
 //  - occluded edges are killed against the light's depth map (Sect. 4.2.1):
 //    the edge's own depth at the sample is compared with the farthest depth of
 //    the 3 x 3 texels around it (a silhouette's own surface is steep there).
@@ -32,5 +34,8 @@ void main() {
     for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(c + ivec2(x, y), ivec2(0), top), 0).r);
   if (z_edge > z_far + 1e-5) discard;
   o_edge = vec2((dot(f_line.xy, p) + f_line.z) * texels, z_edge);
-  gl_FragDepth = priority / (2.0 * u_half_width + 1.0);
+  // Priority resolved with depth: 0.95 of the edge's light depth, 0.05 of the
+  // corner distance (measured on jenga at 512: distance only 1.24% of visible
+  // pixels wrong, 0.5 / 0.9 / 0.95 / 0.99 of depth 1.22 / 0.82 / 0.62 / 1.23%).
+  gl_FragDepth = 0.95 * clamp(z_edge, 0.0, 1.0) + 0.05 * priority / (2.0 * u_half_width + 1.0);
 }

@@ -23,7 +23,19 @@ flat out vec2 f_depth;       // NDC depth at a and b
 
 float winding(vec4 a, vec4 b, vec4 c) { return determinant(mat3(a.xyw, b.xyw, c.xyw)); }
 
+// The part of segment a-b on the visible side of the light's near plane
+// (z >= -w in clip space), in homogeneous space (Sect. 3.2.2: primitives are
+// clipped, not dropped). False when none is.
+bool clip_near(inout vec4 a, inout vec4 b) {
+  float da = a.z + a.w, db = b.z + b.w;
+  if (da < 0.0 && db < 0.0) return false;
+  if (da < 0.0) a = mix(a, b, da / (da - db));
+  else if (db < 0.0) b = mix(b, a, db / (db - da));
+  return a.w > 0.0 && b.w > 0.0;
+}
+
 void emit_edge(vec4 a, vec4 b, float inside) {
+  if (!clip_near(a, b)) return;
   vec2 A = a.xy / a.w, B = b.xy / b.w;
   vec2 ab = B - A;
   float len = length(ab);
@@ -42,8 +54,9 @@ void emit_edge(vec4 a, vec4 b, float inside) {
 }
 
 void main() {
-  for (int k = 0; k < 6; ++k)
-    if (g_clip[k].w <= 0.0) return;  // behind a point light's plane: outside its map
+  // det[p1 p2 p3] of the homogeneous (x, y, w) columns is the triangle's
+  // orientation seen from the light whatever the signs of w: no triangle is
+  // dropped; each silhouette edge is clipped to the near plane.
   float own = winding(g_clip[0], g_clip[2], g_clip[4]);
   if (own == 0.0) return;
   for (int e = 0; e < 3; ++e) {

@@ -6,7 +6,8 @@
 // infinity in direction xyz). Surfaces are two-sided: the visible side is lit
 // only when the light is on its side and, for a spot, inside the cone.
 // u_output 1 writes the mask (1 lit, 0 shadowed; the clear colour 0.5 marks no
-// geometry), 0 writes a shaded colour.
+// geometry), 0 writes a shaded colour, 2 the light fraction itself (the soft
+// techniques' output, against geom/area_reference.h).
 in vec3 v_world;
 in vec3 v_normal;
 in float v_view_depth;
@@ -29,6 +30,10 @@ void main() {
   bool in_cone = u_light.w == 0.0 || u_spot_cos < -1.5 || dot(-l, u_spot_direction) >= u_spot_cos;
   float visibility = shadow_visibility(v_world, n);
   if (u_ambient_only != 0 || !(ndl > 0.0) || !in_cone) visibility = 0.0;
+  if (u_output == 2) {
+    o_color = vec4(visibility, visibility, visibility, 1.0);
+    return;
+  }
   if (u_output == 1) {
     float m = visibility > 0.5 ? 1.0 : 0.0;
     o_color = vec4(m, m, m, 1.0);

@@ -29,7 +29,7 @@
 #include <tuple>
 #include <vector>
 
-#include "../fuzz/fuzz_import.h"
+#include "fuzz_import.h"
 #include "cli_run.h"
 
 namespace fs = std::filesystem;

@@ -12,7 +12,7 @@
 #include <map>
 #include <string>
 
-#include "../fuzz/fuzz_import.h"
+#include "fuzz_import.h"
 #include "cli_run.h"
 
 namespace fs = std::filesystem;

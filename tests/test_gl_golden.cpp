@@ -48,6 +48,10 @@ TEST(GlGolden, EveryTechniqueOnTheDefaultScene) {
       render::FrameSettings fs;
       fs.technique = t;
       fs.shadow_map_size = 512;
+      float bounds[4];
+      render::scene_bounds(*state, bounds);
+      if (render::technique_is_soft(t))  // a disc light: 4% of the scene's radius, 0.02 rad for the sun
+        fs.light_radius = directional(light.setup) ? 0.02f : 0.04f * bounds[3];
       geom::PngImage image;
       std::vector<render::PassTime> times;
       ASSERT_TRUE(render::render(*state, view, light.setup, fs, image, times, error)) << error;
@@ -95,9 +99,9 @@ TEST(GlGolden, DefaultSceneMasksAgreeWithTheReference) {
   ASSERT_TRUE(state) << error;
   const geom::Camera view = render::default_view(*state, 200, 150);
   for (const Light& light : golden_lights(imported.scene))
-    for (render::Technique t :
-         {render::Technique::Ssm, render::Technique::Pcf, render::Technique::Psm, render::Technique::Lispsm,
-          render::Technique::Uniform, render::Technique::Edsm, render::Technique::Esm, render::Technique::Sv}) {
+    for (render::Technique t : {render::Technique::Ssm, render::Technique::Pcf, render::Technique::Psm,
+                                render::Technique::Lispsm, render::Technique::Uniform, render::Technique::Edsm,
+                                render::Technique::Esm, render::Technique::Sssm, render::Technique::Sv}) {
       const Comparison c = render_and_compare(*state, imported.scene, view, light.setup, t, 1024);
       SCOPED_TRACE(std::string(light.name) + " " + render::technique_name(t));
       EXPECT_GT(c.shadowed, 100u);

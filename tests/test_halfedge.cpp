@@ -149,7 +149,7 @@ TEST(Halfedge, TableEqualsOpenMeshOnRealMeshes) {
     for (const char* suffix : {".bsp", ".md3"}) {
       std::vector<std::string> members;
       std::string error;
-      ASSERT_TRUE(geom::detail::list_archive_members(pk3, suffix, members, error)) << error;
+      ASSERT_TRUE(geom::list_archive_members(pk3, suffix, members, error)) << error;
       for (const std::string& m : members) files.push_back(std::string(pk3) + ":" + m);
     }
   }

@@ -23,7 +23,8 @@ namespace {
 const char* kUsage =
     "Usage: geomview [FILE] [options]   (FILE: a baked .gbake container, or a mesh or scene file baked in\n"
     "                                    process; the bundled default scene when absent)\n"
-    "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform, or all\n"
+    "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform esm-exact sssm\n"
+    "                             edsm-soft pcf-soft, or all\n"
     "  --compare NAME,NAME[,..]   a grid of 2 to 12 techniques from one camera and light, each panel labelled\n"
     "                             with technique, map size, pass time and error (or all); -o grid.png headless\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"
@@ -35,14 +36,15 @@ const char* kUsage =
     "                             400x300)\n"
     "  -o FILE.png                output (several techniques: -o DIR, one DIR/NAME.png per technique)\n"
     "  --output color|mask        mask: 8-bit grey, 255 lit, 0 shadow, 128 no geometry\n"
+    "  --light-radius R           edsm-soft, pcf-soft: the light's disc (world units; radians for a sun; default 0)\n"
     "  --frames N                 render N frames and print the time of each pass\n"
     "  --inspect                  overlay silhouette quads, topology problems, focus body, with a legend\n"
     "  --error                    measure the error against the ray-cast reference (printed; in the HUD)\n"
     "  --hud                      headless: draw the HUD (technique, passes, error) into the PNG, print it\n"
     "  --window                   open a window (default when no -o is given and a display exists)\n"
     "  --script KEYS              window: press these keys, one per frame (e.g. tti)  --screenshot FILE.png\n"
-    "  --shaders DIR              the shaders/ folder (default: $GEOMVIEW_SHADERS, ../share/geom/shaders\n"
-    "                             beside the binary, the source tree's)\n"
+    "  --shaders DIR              the shaders/ folder (default: $GEOMVIEW_SHADERS, else\n"
+    "                             %s)\n"
     "Window keys: T technique, L light type, [ ] shadow-map size, I inspection, E error, C compare grid,\n"
     "R reset camera, H panels, Esc quit; drag to orbit, right-drag or scroll to zoom.\n";
 
@@ -93,16 +95,23 @@ int fail(const std::string& message) {
   return cli::kExitFailure;
 }
 
+// BIN/../share/geom/NAME beside this program's binary, as installed wherever
+// the prefix was moved, if `probe` exists there; else `fallback` (the source
+// tree's, for a binary of the build tree).
+std::string beside_binary(const std::string& name, const std::string& probe, const std::string& fallback) {
+  const std::string dir = self_dir();
+  if (dir.empty()) return fallback;
+  const std::filesystem::path p = (std::filesystem::path(dir) / ".." / "share" / "geom" / name).lexically_normal();
+  std::error_code ec;
+  return std::filesystem::exists(probe.empty() ? p : p / probe, ec) ? p.string() : fallback;
+}
+
+std::string default_shaders() { return beside_binary("shaders", "shade.frag", GEOM_SHADER_DIR); }
+
 std::string find_shaders(const std::string& flag) {
   if (!flag.empty()) return flag;
   if (const char* env = std::getenv("GEOMVIEW_SHADERS"); env && *env) return env;
-  std::vector<std::string> candidates;
-  if (const std::string dir = self_dir(); !dir.empty()) candidates.push_back(dir + "/../share/geom/shaders");
-  candidates.push_back(GEOM_SHADER_DIR);
-  candidates.push_back(GEOMVIEW_INSTALLED_SHADER_DIR);
-  for (const std::string& c : candidates)
-    if (std::filesystem::exists(c + "/shade.frag")) return std::filesystem::path(c).lexically_normal().string();
-  return GEOM_SHADER_DIR;
+  return default_shaders();
 }
 
 int format_up_axis(const std::string& path) {
@@ -116,14 +125,15 @@ int parse_options(int argc, char** argv, Options& o) {
                  {"--help", "-h", "--inspect", "--window", "--hud", "--error"},
                  {"--technique", "--compare", "--eye", "--target", "--up", "--fovy", "--near", "--far", "--light",
                   "--spot", "--shadow-map-size", "--size", "-o", "--output", "--frames", "--shaders", "--up-axis",
-                  "--script", "--screenshot"});
+                  "--script", "--screenshot", "--light-radius"});
   if (!args.error().empty()) return fail(args.error() + " (see geomview --help)"), cli::kExitUsage;
   if (args.has("--help") || args.has("-h")) {
-    std::fputs(kUsage, stdout);
+    std::printf(kUsage, default_shaders().c_str());
     return 0;
   }
   if (args.positional().size() > 1) return fail("one input file at most");
-  o.file = args.positional().empty() ? GEOMVIEW_DEFAULT_SCENE : args.positional()[0];
+  o.file = !args.positional().empty() ? args.positional()[0]
+                                      : beside_binary("default_scene.gltf", "", GEOMVIEW_DEFAULT_SCENE);
   std::string error;
   if (!parse_techniques(args.all("--technique"), o.techniques, error)) return fail(error);
   if (o.techniques.empty()) o.techniques.push_back(render::Technique::Pcf);
@@ -137,6 +147,8 @@ int parse_options(int argc, char** argv, Options& o) {
   if (output != "color" && output != "mask") return fail("--output must be color or mask, not '" + output + "'");
   o.settings.output = output == "mask" ? render::Output::Mask : render::Output::Color;
   o.settings.shadow_map_size = std::atoi(args.get("--shadow-map-size", "1024").c_str());
+  o.settings.light_radius = float(std::atof(args.get("--light-radius", "0").c_str()));
+  if (!(o.settings.light_radius >= 0) || o.settings.light_radius > 1e6) return fail("--light-radius must be >= 0");
   if (o.settings.shadow_map_size < 16 || o.settings.shadow_map_size > 16384)
     return fail("--shadow-map-size must be within 16..16384");
   o.frames = std::atoi(args.get("--frames", "1").c_str());

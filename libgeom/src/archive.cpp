@@ -14,6 +14,7 @@
 #include <mutex>
 #include <unordered_map>
 
+#include "geom/import.h"
 #include "importers.h"
 
 namespace geom::detail {
@@ -157,8 +158,13 @@ bool read_archive_member(const std::string& archive, const std::string& member, 
   return true;
 }
 
+}  // namespace geom::detail
+
+namespace geom {
+
 bool list_archive_members(const std::string& archive, const std::string& suffix, std::vector<std::string>& names,
                           std::string& error) {
+  using namespace detail;
   ZipCloser z{open_archive(archive, error)};
   if (!z.z) return false;
   zip_int64_t n = zip_get_num_entries(z.z, 0);
@@ -170,4 +176,4 @@ bool list_archive_members(const std::string& archive, const std::string& suffix,
   return true;
 }
 
-}  // namespace geom::detail
+}  // namespace geom

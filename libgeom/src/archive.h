@@ -11,8 +11,6 @@ namespace geom::detail {
 bool read_archive_member(const std::string& archive, const std::string& member, std::vector<unsigned char>& bytes,
                          uint64_t max_bytes, std::string& error);
 
-// Lists the members of an archive whose names end with `suffix` (case-insensitive), sorted.
-bool list_archive_members(const std::string& archive, const std::string& suffix, std::vector<std::string>& names,
-                          std::string& error);
+// Listing: geom/import.h list_archive_members.
 
 }  // namespace geom::detail

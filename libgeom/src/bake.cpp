@@ -186,6 +186,17 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       return r;
     }
 
+    // The adjacency now, while the edge table is whole; then what no later
+    // stage reads goes, so the peak holds less (its section keeps its place).
+    std::vector<uint32_t> adj;
+    if (options.adjacency) {
+      adj.resize(adjacency_index_count(tc));
+      build_adjacency(adj.data(), w.indices.data(), tc, topo);
+    }
+    std::vector<uint32_t>().swap(topo.face_edges);
+    std::vector<uint32_t>().swap(topo.face_component);
+    std::vector<uint8_t>().swap(topo.face_flags);
+
     std::string js = "{";
     if (options.esm || need_volume) {  // the buffers in the local frame
       std::vector<double> origin(fp.origin, fp.origin + 3);
@@ -201,6 +212,7 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       js += "\"esm\":" + esm_json(esm.stats) + ",";
       r.esm = esm.stats;
     }
+    std::vector<double>().swap(fp.normals);  // only the ESM quads read them
     const auto kept_volume = std::make_shared<ShadowVolume>();
     ShadowVolume& volume = *kept_volume;
     if (need_volume) volume = build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
@@ -213,8 +225,6 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       r.volume = volume.stats;
     }
     if (options.adjacency) {
-      std::vector<uint32_t> adj(adjacency_index_count(tc));
-      build_adjacency(adj.data(), w.indices.data(), tc, topo);
       js += "\"adjacency\":{\"indices\":" + json_uint(adj.size()) + "},";
       s.push_back(make_baked_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", std::move(adj)));
     }

@@ -68,7 +68,7 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
 
 namespace {
 
-// The vertex of face f at corner k, and k of vertex v in face f.
+// Which corner of face `f` holds vertex `v`.
 inline int corner_of(const uint32_t* f, uint32_t v) { return f[0] == v ? 0 : f[1] == v ? 1 : 2; }
 
 // Walks the fan of each vertex through its manifold edges, corner to corner:

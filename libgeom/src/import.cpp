@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 
 #include "archive.h"
 #include "importers.h"
@@ -26,6 +27,16 @@ uint64_t detail::physical_memory_bytes() {
 }
 
 namespace {
+
+// The formats, by extension: the one list (geom/import.h supported_extensions).
+using Importer = bool (*)(const detail::ImportInput&, Scene&, std::string&);
+struct Format {
+  const char* extension;
+  Importer importer;
+};
+const Format kFormats[] = {{".gltf", detail::import_gltf}, {".glb", detail::import_gltf}, {".obj", detail::import_obj},
+                           {".ply", detail::import_ply},   {".off", detail::import_off},  {".stl", detail::import_stl},
+                           {".bsp", detail::import_bsp},   {".md3", detail::import_md3}};
 
 std::string lower_extension(const std::string& name) {
   size_t dot = name.find_last_of('.');
@@ -137,6 +148,25 @@ bool validate(Scene& s, const ImportOptions& options, std::string& error) {
 
 }  // namespace
 
+const std::vector<std::string>& supported_extensions() {
+  static const std::vector<std::string> list = [] {
+    std::vector<std::string> out;
+    for (const Format& f : kFormats) out.push_back(f.extension);
+    return out;
+  }();
+  return list;
+}
+
+bool is_supported_name(const std::string& name) {
+  std::string n = name;
+  std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  for (const Format& f : kFormats) {
+    const size_t k = std::strlen(f.extension);
+    if (n.size() >= k && n.compare(n.size() - k, k, f.extension) == 0) return true;
+  }
+  return false;
+}
+
 ImportResult import_memory(const std::string& name, const void* data, size_t size, const ImportOptions& options,
                            const std::string& base_dir) {
   ImportResult result;
@@ -149,24 +179,14 @@ ImportResult import_memory(const std::string& name, const void* data, size_t siz
   result.scene.files.push_back(name);
 
   const std::string ext = lower_extension(name);
-  bool (*importer)(const detail::ImportInput&, Scene&, std::string&) = nullptr;
-  if (ext == "gltf" || ext == "glb")
-    importer = detail::import_gltf;
-  else if (ext == "obj")
-    importer = detail::import_obj;
-  else if (ext == "ply")
-    importer = detail::import_ply;
-  else if (ext == "off")
-    importer = detail::import_off;
-  else if (ext == "stl")
-    importer = detail::import_stl;
-  else if (ext == "bsp")
-    importer = detail::import_bsp;
-  else if (ext == "md3")
-    importer = detail::import_md3;
+  Importer importer = nullptr;
+  for (const Format& f : kFormats)
+    if (ext == f.extension + 1) importer = f.importer;
   if (!importer) {
-    result.error =
-        name + ": unknown file type '." + ext + "' (expected .gltf, .glb, .obj, .ply, .off, .stl, .bsp or .md3)";
+    std::string expected;
+    for (size_t i = 0; i < std::size(kFormats); ++i)
+      expected += std::string(i == 0 ? "" : i + 1 == std::size(kFormats) ? " or " : ", ") + kFormats[i].extension;
+    result.error = name + ": unknown file type '." + ext + "' (expected " + expected + ")";
     return result;
   }
   std::string error;
@@ -200,7 +220,7 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
   const std::string ext = lower_extension(path);
   if (colon == std::string::npos && (ext == "pk3" || ext == "zip")) {  // an archive, no member named
     std::vector<std::string> names;
-    if (!detail::list_archive_members(path, ".bsp", names, error))
+    if (!list_archive_members(path, ".bsp", names, error))
       result.error = path + ": " + error;
     else
       result.error = path + (names.empty() ? ": no .bsp map inside the archive"

@@ -64,6 +64,12 @@ std::string json_escape(const std::string& s) {
   return out;
 }
 
+}  // namespace
+
+std::string json_quote(const std::string& s) { return "\"" + json_escape(s) + "\""; }
+
+namespace {
+
 // "polygon.faces" -> {"polygon": {"faces": n}}; keeps the order of first appearance.
 std::vector<std::pair<std::string, std::vector<std::pair<std::string, uint64_t>>>> group_counts(
     const std::vector<std::pair<std::string, uint64_t>>& counts) {

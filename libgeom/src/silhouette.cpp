@@ -15,13 +15,7 @@ std::vector<LightVolume> scene_lights(const Scene& scene) {
   for (const Light& l : scene.lights) {
     LightVolume v;
     v.name = l.name;
-    if (l.type == LightType::Directional) {
-      for (int k = 0; k < 3; ++k) v.light[k] = -double(l.direction[k]);
-      v.light[3] = 0;
-    } else {
-      for (int k = 0; k < 3; ++k) v.light[k] = l.position[k];
-      v.light[3] = 1;
-    }
+    light_homogeneous(l, v.light);  // geom/scene.h: directional (-direction, 0), else (position, 1)
     out.push_back(v);
   }
   return out;

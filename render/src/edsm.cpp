@@ -6,12 +6,14 @@
 
 namespace render {
 
-bool edsm_passes(Frame& f) {
+namespace {
+
+// One face: the depth map, then the edge distance map beside it.
+bool edsm_face(Frame& f, const glm::mat4& light_clip) {
   State& s = f.s;
   const int n = f.n;
-  f.light_frame = light_frame(s, f.light);
-  const glm::mat4 light_clip = f.light_frame.clip();
-  if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
+  // Bias factor 2: the lookup compares a 2 x 2 footprint (taps one texel away).
+  if (!depth_map_pass(f, light_clip, 2.0f, false)) return false;
   ensure_edge_map(s, n, GL_RG32F);
   GLuint p = program(s.programs, {"edsm_edges.vert", "edsm_edges.geom", "edsm_edges.frag"}, f.error);
   if (!p) return false;
@@ -34,8 +36,13 @@ bool edsm_passes(Frame& f) {
   }
   glBindSampler(1, 0);
   f.timer.end();
-  finish_map(f);
-  f.second_texture = s.edge_map.color;
+  return true;
+}
+
+}  // namespace
+
+bool edsm_passes(Frame& f) {
+  if (!silhouette_faces(f, edsm_face, GL_RG32F)) return false;
   f.lookup = "lookup_edsm.frag";
   return true;
 }

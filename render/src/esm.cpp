@@ -7,18 +7,21 @@
 #include "state.h"
 
 namespace render {
+namespace {
+// Depth bias factor: the lookup compares a 2 x 2 footprint, taps up to one
+// texel from the sample (shadow_map.cpp: k + 1 texel slopes for k texels).
+constexpr float kBias = 2.0f;
 
-bool esm_passes(Frame& f) {
+// One face: the depth map, then the silhouette quads beside it.
+bool esm_face(Frame& f, const glm::mat4& light_clip) {
   State& s = f.s;
   const int n = f.n;
-  f.light_frame = light_frame(s, f.light);
-  const glm::mat4 light_clip = f.light_frame.clip();
-  if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
+  if (!depth_map_pass(f, light_clip, kBias, false)) return false;
   ensure_edge_map(s, n, GL_RGBA32F);
   GLuint p = program(s.programs, {"esm_quad.vert", "esm_edges.frag"}, f.error);
   if (!p) return false;
   const float texels = 2.5f;  // quad reach beyond the edge, in texels
-  set(p, "u_extrude_scale", 2.0f * texels / (float(n) * std::fabs(f.light_frame.proj[0][0])));
+  set(p, "u_extrude_scale", 2.0f * texels / (float(n) * projection_scale(light_clip)));
   set(p, "u_planes", 2);
   set(p, "u_depth", 1);
   set(p, "u_map_size", float(n));
@@ -45,8 +48,13 @@ bool esm_passes(Frame& f) {
   glEnable(GL_DEPTH_TEST);
   glBindSampler(1, 0);
   f.timer.end();
-  finish_map(f);
-  f.second_texture = s.edge_map.color;
+  return true;
+}
+
+}  // namespace
+
+bool esm_passes(Frame& f) {
+  if (!silhouette_faces(f, esm_face, GL_RGBA32F)) return false;
   f.lookup = "lookup_esm.frag";
   return true;
 }

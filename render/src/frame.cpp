@@ -36,6 +36,8 @@ GLuint shading_program(Frame& f) {
   State& s = f.s;
   std::vector<std::string> files = {"scene.vert", "shade.frag", f.lookup};
   if (f.lookup == "lookup_focused.frag") files.push_back("light_depth.frag");  // its light_depth()
+  if (f.faces) files.push_back("lookup_faces.frag");                           // esm, edsm: face_clip()
+  if (!f.lookup_extra.empty()) files.push_back(f.lookup_extra);
   GLuint p = program(s.programs, files, f.error);
   if (!p) return 0;
   const View& view = f.view;
@@ -46,7 +48,7 @@ GLuint shading_program(Frame& f) {
   set(p, "u_light", local_light(s, light));
   set(p, "u_spot_direction", glm::normalize(light.spot_direction));
   set(p, "u_spot_cos", light.spot && light.position.w != 0 ? std::cos(light.spot_angle) : -2.0f);
-  set(p, "u_output", f.fs.output == Output::Mask ? 1 : 0);
+  set(p, "u_output", f.fs.output == Output::Mask ? 1 : f.fs.output == Output::Fraction ? 2 : 0);
   set(p, "u_ambient_only", 0);
   set(p, "u_light_matrix", at(glm::dmat4(f.light_frame.clip()), s.origin));
   if (f.lookup == "lookup_focused.frag") set(p, "u_depth_range", light_depth_range(s, light));
@@ -54,6 +56,13 @@ GLuint shading_program(Frame& f) {
   set(p, "u_distance_map", 1);
   set(p, "u_edge_map", 1);
   set(p, "u_pcf", f.t == Technique::Pcf ? 1 : 0);
+  set(p, "u_esm_exact", f.t == Technique::EsmExact ? 1 : 0);
+  if (f.faces) {
+    set(p, "u_faces", f.faces);
+    for (int i = 0; i < f.faces; ++i)
+      set(p, ("u_face_matrix[" + std::to_string(i) + "]").c_str(), at(glm::dmat4(f.face_clip[i]), s.origin));
+    set(p, "u_face_light", glm::vec3(glm::dvec3(glm::vec3(light.position)) - s.origin));
+  }
   set(p, "u_cube_bias", 0.97f);                // 003, 12.3.7: fDistSquared * DepthBias
   set(p, "u_cube_filter", 1.0f / float(f.n));  // 003, 12.4: tap offsets of about one texel
   return p;
@@ -88,7 +97,7 @@ bool draw_frame(State& s, const View& view, const FrameLight& light, const Frame
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   glViewport(0, 0, w, h);
   const float grey = 0.5f;  // mask: 128 where no geometry is
-  if (fs.output == Output::Mask)
+  if (fs.output != Output::Color)
     glClearColor(grey, grey, grey, 1.0f);
   else
     glClearColor(0.18f, 0.2f, 0.24f, 1.0f);
@@ -109,7 +118,7 @@ bool draw_frame(State& s, const View& view, const FrameLight& light, const Frame
   const geom::FocusMethod method = f.t == Technique::Lispsm    ? geom::FocusMethod::Lispsm
                                    : f.t == Technique::Uniform ? geom::FocusMethod::Uniform
                                                                : geom::FocusMethod::Psm;
-  if (fs.inspect && fs.output != Output::Mask && !inspection_pass(f, method)) return false;
+  if (fs.inspect && fs.output == Output::Color && !inspection_pass(f, method)) return false;
   return true;
 }
 

@@ -1,5 +1,9 @@
 // Platform glue: EGL (device enumeration, then surfaceless Mesa) or a GLFW window.
-// Facts this relies on are in /work/shared/TOOLCHAIN.md, "Headless OpenGL".
+// Facts this relies on: the display comes from eglGetPlatformDisplay with
+// EGL_PLATFORM_SURFACELESS_MESA (eglGetDisplay(EGL_DEFAULT_DISPLAY) fails without
+// X) or from device enumeration (EGL_PLATFORM_DEVICE_EXT, the path that finds an
+// NVIDIA GPU); surfaceless has no default framebuffer (render into FBOs, config
+// with EGL_PBUFFER_BIT); glfwInit fails without DISPLAY, so fall back to EGL.
 #include "render/platform.h"
 
 #include <EGL/egl.h>

@@ -121,8 +121,9 @@ bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool lin
   glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
   glViewport(0, 0, n, n);
   glClear(GL_DEPTH_BUFFER_BIT);
-  // Focused maps: casters before the warp's near plane still occlude (the depth written is linear).
-  if (linear_light) glEnable(GL_DEPTH_CLAMP);
+  // Casters before the near plane still occlude (focused maps: the depth written
+  // is linear; fitted frusta: their near plane is H's nearest point).
+  glEnable(GL_DEPTH_CLAMP);
   if (!linear_light) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
@@ -174,8 +175,13 @@ GLuint depth_sampler(State& s) {
 }
 
 // ssm: one depth map, nearest lookup; pcf: the same with bilinear 2x2 taps.
+// The light frustum is fitted to what the camera sees (light_fit.cpp); a point
+// light that needs more than one frustum is drawn as the cube technique.
 bool shadow_map_passes(Frame& f) {
-  f.light_frame = light_frame(f.s, f.light);
+  if (!fitted_light_frame(f, f.light_frame)) {
+    f.t = Technique::Cube;  // the pass is then named "cube map (...)"
+    return cube_passes(f);
+  }
   const float slope = f.t == Technique::Pcf ? 3.5f : 1.5f;  // pcf: taps 1 texel away
   if (!depth_map_pass(f, f.light_frame.clip(), slope, false)) return false;
   finish_map(f);

@@ -165,7 +165,7 @@ bool render(State& s, const geom::Camera& camera, const geom::Light& light, cons
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-  const int channels = fs.output == Output::Mask ? 1 : 3;
+  const int channels = fs.output == Output::Color ? 3 : 1;
   image.width = w, image.height = h, image.channels = channels;
   image.pixels.resize(size_t(w) * h * channels);
   for (int y = 0; y < h; ++y)  // GL's first row is the bottom one

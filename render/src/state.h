@@ -59,6 +59,11 @@ struct State {
   // Render targets, re-created when their size changes.
   Target camera, shadow_map, cube, edge_map;
   Sampler depth_sampler;  // reads a depth texture without comparison
+  // esm / edsm: the depth and edge maps of their faces (1 fitted frustum or 6
+  // cube faces) as 2D arrays (silhouette_faces.cpp).
+  Texture face_depth, face_edges;
+  int face_n = 0, face_layers = 0;
+  GLenum face_format = 0;
   // Silhouette buffers per caster, baked on first use.
   geom::Scene scene;  // positions, indices, sources: the casters are baked from it
   bool casters_built = false;
@@ -107,9 +112,12 @@ struct Frame {
   std::string& error;
   // Set by the technique's light passes:
   std::string lookup = "lookup_none.frag";  // its shaders/lookup_*.frag
+  std::string lookup_extra;                 // a shader file the lookup links with ("": none)
   GLuint shadow_texture = 0, second_texture = 0;
   LightFrame light_frame;  // u_light_matrix
   bool focused = false;    // psm, lispsm, uniform (even when drawn as cube)
+  int faces = 0;           // esm, edsm: 1 fitted frustum or 6 cube faces (shaders/lookup_faces.frag)
+  glm::mat4 face_clip[6];  // their light clip matrices (world)
 };
 
 // The technique table (techniques.cpp): one row per Technique, in enum order.
@@ -126,11 +134,17 @@ struct TechniqueRow {
 const TechniqueRow& technique_row(Technique t);
 
 // Light passes, one family per file.
-bool shadow_map_passes(Frame& f);                          // shadow_map.cpp: ssm, pcf
-bool esm_passes(Frame& f);                                 // esm.cpp
-bool edsm_passes(Frame& f);                                // edsm.cpp
-bool focused_passes(Frame& f);                             // focused.cpp: psm, lispsm, uniform
-bool cube_passes(Frame& f);                                // cube.cpp
+bool shadow_map_passes(Frame& f);  // shadow_map.cpp: ssm, pcf
+bool esm_passes(Frame& f);         // esm.cpp
+bool edsm_passes(Frame& f);        // edsm.cpp
+bool focused_passes(Frame& f);     // focused.cpp: psm, lispsm, uniform
+bool cube_passes(Frame& f);        // cube.cpp
+bool sssm_passes(Frame& f);        // sssm.cpp
+bool sssm_shade(Frame& f, GLuint p);
+bool edsm_soft_passes(Frame& f);  // soft.cpp: edsm-soft
+bool edsm_soft_shade(Frame& f, GLuint p);
+bool pcf_soft_passes(Frame& f);  // soft.cpp: pcf-soft
+bool pcf_soft_shade(Frame& f, GLuint p);
 bool volume_shade(Frame& f, GLuint p);                     // shadow_volume.cpp: sv, sv-zpass, sv-zfail
 bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
 
@@ -147,6 +161,18 @@ GLuint depth_sampler(State& s);
 glm::vec4 local_light(const State& s, const FrameLight& light);
 // u_depth_range of shaders/light_depth.frag.
 glm::vec2 light_depth_range(const State& s, const FrameLight& light);
+
+// light_fit.cpp: the single-map techniques' light frustum fitted to what the
+// camera sees (the uniform focused matrix of H). False when the light needs
+// cube faces (a point light among or around the receivers).
+bool fitted_light_frame(Frame& f, LightFrame& out);
+// silhouette_faces.cpp: esm and edsm drawn with the fitted frustum or as six
+// cube faces: `draw_face` draws the depth map and the edge map of one light
+// clip matrix into s.shadow_map / s.edge_map; the faces are gathered into
+// s.face_depth / s.face_edges (2D arrays), which become the frame's textures.
+bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& light_clip), GLenum edge_format);
+// Clip x (or y, the smaller) per unit of length at w = 1 of a light's clip matrix.
+float projection_scale(const glm::mat4& clip);
 
 // focused.cpp: the focused light matrix of psm / lispsm / uniform, and H.
 geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,

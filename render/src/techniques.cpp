@@ -23,6 +23,10 @@ constexpr TechniqueRow kTechniques[] = {
     {Technique::Psm,     "psm",      false, false, false, true,  false, focused_passes,    nullptr},
     {Technique::Lispsm,  "lispsm",   false, false, false, true,  false, focused_passes,    nullptr},
     {Technique::Uniform, "uniform",  false, false, false, true,  false, focused_passes,    nullptr},
+    {Technique::EsmExact, "esm-exact", true, false, false, true,  false, esm_passes,        nullptr},
+    {Technique::Sssm,    "sssm",     false, false, true,  true,  false, sssm_passes,       sssm_shade},
+    {Technique::EdsmSoft,"edsm-soft",false, false, true,  true,  false, edsm_soft_passes,  edsm_soft_shade},
+    {Technique::PcfSoft, "pcf-soft", false, false, false, true,  false, pcf_soft_passes,   pcf_soft_shade},
 };
 // clang-format on
 constexpr int kCount = int(std::size(kTechniques));
@@ -30,7 +34,7 @@ constexpr int kCount = int(std::size(kTechniques));
 constexpr bool rows_in_enum_order() {
   for (int i = 0; i < kCount; ++i)
     if (int(kTechniques[i].id) != i) return false;
-  return int(Technique::Uniform) + 1 == kCount;
+  return int(Technique::PcfSoft) + 1 == kCount;
 }
 static_assert(rows_in_enum_order(), "kTechniques: one row per Technique, in enum order");
 
@@ -47,6 +51,7 @@ std::vector<Technique> available_techniques() {
 const char* technique_name(Technique t) { return technique_row(t).name; }
 bool technique_has_map(Technique t) { return technique_row(t).has_map; }
 bool technique_needs_point_light(Technique t) { return technique_row(t).needs_point_light; }
+bool technique_is_soft(Technique t) { return t == Technique::EdsmSoft || t == Technique::PcfSoft; }
 
 bool parse_technique(const std::string& name, Technique& out) {
   for (int i = 0; i < kCount; ++i)

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <filesystem>
 
-#include "archive.h"
+#include "geom/import.h"
 #include "geombake/tree.h"
 
 namespace geombake {
@@ -26,7 +26,7 @@ bool expand_inputs(const std::vector<std::string>& args, std::vector<std::string
       std::string error;
       // An archive that cannot be listed, or holds no map, stays one input: the
       // import says why (its `Error:`), and the other inputs go on.
-      if (!geom::detail::list_archive_members(a, ".bsp", names, error) || names.empty()) {
+      if (!geom::list_archive_members(a, ".bsp", names, error) || names.empty()) {
         inputs.push_back(a);
         continue;
       }

@@ -8,61 +8,6 @@
 #include <vector>
 
 namespace geombake {
-namespace {
-
-// The length of the valid UTF-8 sequence at s[i], 0 if none starts there
-// (overlong forms, surrogates and code points over U+10FFFF are invalid).
-size_t utf8_length(const std::string& s, size_t i) {
-  const auto b = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
-  const unsigned char c = b(i);
-  size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
-  if (n == 0 || i + n > s.size()) return 0;
-  for (size_t k = 1; k < n; ++k)
-    if ((b(i + k) & 0xc0) != 0x80) return 0;
-  if (n == 2 && c < 0xc2) return 0;                                       // overlong
-  if (n == 3 && c == 0xe0 && b(i + 1) < 0xa0) return 0;                   // overlong
-  if (n == 3 && c == 0xed && b(i + 1) >= 0xa0) return 0;                  // a surrogate
-  if (n == 4 && c == 0xf0 && b(i + 1) < 0x90) return 0;                   // overlong
-  if (n == 4 && (c > 0xf4 || (c == 0xf4 && b(i + 1) >= 0x90))) return 0;  // over U+10FFFF
-  return n;
-}
-
-}  // namespace
-
-std::string json_quote(const std::string& s) {
-  std::string o = "\"";
-  char buf[8];
-  for (size_t i = 0; i < s.size();) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    const size_t n = utf8_length(s, i);
-    if (n == 0) {
-      std::snprintf(buf, sizeof buf, "\\udc%02x", c);
-      o += buf;
-      ++i;
-      continue;
-    }
-    if (n == 1) {
-      if (c == '"')
-        o += "\\\"";
-      else if (c == '\\')
-        o += "\\\\";
-      else if (c == '\n')
-        o += "\\n";
-      else if (c == '\r')
-        o += "\\r";
-      else if (c == '\t')
-        o += "\\t";
-      else if (c < 0x20 || c == 0x7f)
-        std::snprintf(buf, sizeof buf, "\\u%04x", c), o += buf;
-      else
-        o += char(c);
-    } else {
-      o.append(s, i, n);
-    }
-    i += n;
-  }
-  return o + "\"";
-}
 
 bool make_escape(const std::string& path, std::string& out) {
   out.clear();

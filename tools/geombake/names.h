@@ -5,15 +5,13 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "geom/report.h"
+
 namespace geombake {
 
-// `s` as a JSON string literal, quotes included, valid whatever bytes `s`
-// holds: valid UTF-8 is kept as it is (control characters, '"' and '\'
-// escaped); each byte that is not part of valid UTF-8 becomes \udcXX, the lone
-// low surrogate U+DC00 + byte (PEP 383's "surrogateescape"), so no name is lost
-// and none is confused with another: Python's
-// json.loads(line)["input"].encode("utf-8", "surrogateescape") gives the bytes back.
-std::string json_quote(const std::string& s);
+// `s` as a JSON string literal, valid whatever bytes `s` holds: libgeom's
+// (geom/report.h), one escaper for the report and the file names.
+using geom::json_quote;
 
 // `path` escaped for a Makefile rule as GCC's -MD writes it, which Make and
 // Ninja both read: a space or tab becomes "\ " (the backslashes before it

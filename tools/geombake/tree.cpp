@@ -10,7 +10,7 @@
 #include <set>
 #include <utility>
 
-#include "archive.h"
+#include "geom/import.h"
 
 namespace geombake {
 namespace fs = std::filesystem;
@@ -95,12 +95,7 @@ struct Walk {
 
 }  // namespace
 
-bool is_mesh_name(const std::string& name) {
-  const std::string n = lower(name);
-  for (const char* ext : {".gltf", ".glb", ".obj", ".ply", ".off", ".stl", ".bsp", ".md3"})
-    if (ends_with(n, ext)) return true;
-  return false;
-}
+bool is_mesh_name(const std::string& name) { return geom::is_supported_name(name); }
 
 void walk_directory(const std::string& dir, std::vector<std::string>& rel_files, std::vector<std::string>& warnings) {
   Walk w{dir, rel_files, warnings, {}, {}};
@@ -126,7 +121,7 @@ bool expand_tree_inputs(const std::vector<std::string>& args, std::vector<TreeIn
       folder = true;
       // An archive that cannot be listed, or holds no map, stays one input: its
       // import says why (`Error: FILE: cause`), and the other inputs go on (issue 15).
-      if (!geom::detail::list_archive_members(a, ".bsp", names, error) || names.empty()) {
+      if (!geom::list_archive_members(a, ".bsp", names, error) || names.empty()) {
         inputs.push_back({a, base_name(a), base_name(a)});
         continue;
       }

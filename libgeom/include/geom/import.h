@@ -11,6 +11,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "geom/scene.h"
 
@@ -31,6 +32,19 @@ struct ImportResult {
 };
 
 ImportResult import_file(const std::string& path, const ImportOptions& options = {});
+
+// The extensions the importers read, lower case with their dot, in the order
+// of the list above: ".gltf", ".glb", ".obj", ".ply", ".off", ".stl", ".bsp", ".md3".
+const std::vector<std::string>& supported_extensions();
+// Whether `name` ends in one of them (case-insensitive): a file import_file
+// would try (a tree walk's filter).
+bool is_supported_name(const std::string& name);
+
+// The members of a zip (.pk3) archive whose names end with `suffix`
+// (case-insensitive, e.g. ".bsp"), sorted: what "ARCHIVE.pk3:member" can name.
+// False with `error` set when the archive cannot be opened or read.
+bool list_archive_members(const std::string& archive, const std::string& suffix, std::vector<std::string>& names,
+                          std::string& error);
 
 // Import from bytes already in memory; `name` decides the format (by extension)
 // and appears in messages. `base_dir` resolves relative URIs (glTF), may be empty.

@@ -14,6 +14,8 @@
 //   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
 //   esm.cpp, edsm.cpp ...... extended shadow map (seed 000), edge distance shadow map (seed 001)
 //   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (seed 004)
+//   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, seed 001's baseline)
+//   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; seed 001 Sect. 6)
 //   inspection.cpp ......... the overlay: topology problems, silhouette quads, the focus body
 //   platform.cpp ........... EGL (headless) and GLFW (window) glue, render/platform.h
 //
@@ -43,7 +45,9 @@
 
 namespace render {
 
-enum class Technique { Ssm, Pcf, Esm, Edsm, Sv, SvZPass, SvZFail, Cube, Psm, Lispsm, Uniform };
+enum class Technique {
+  Ssm, Pcf, Esm, Edsm, Sv, SvZPass, SvZFail, Cube, Psm, Lispsm, Uniform, EsmExact, Sssm, EdsmSoft, PcfSoft
+};
 
 // The names of --technique, in order; only techniques this build renders.
 std::vector<Technique> available_techniques();
@@ -51,6 +55,7 @@ const char* technique_name(Technique t);
 bool parse_technique(const std::string& name, Technique& out);  // false: unknown or unavailable
 bool technique_has_map(Technique t);                            // false for the shadow volumes (no shadow-map size)
 bool technique_needs_point_light(Technique t);                  // cube: no directional light
+bool technique_is_soft(Technique t);                            // edsm-soft, pcf-soft: a light fraction (light_radius)
 
 // The silhouette buffers of one caster as the renderer takes them: borrowed
 // arrays, from an in-process bake (geom/silhouette.h) or a baked container
@@ -92,7 +97,9 @@ BakedView baked_view(const geom::SilhouetteBuffers& buffers);
 // false with `error` when it has no usable positions and indices.
 bool baked_view(const geom::baked::Reader& reader, BakedView& out, std::string& error);
 
-enum class Output { Color, Mask };
+// Mask: 255 lit, 0 shadow, 128 no geometry; Fraction (the soft techniques): the
+// light fraction of each visible pixel, 0..255 (128 also where no geometry is).
+enum class Output { Color, Mask, Fraction };
 
 struct PassTime {
   std::string pass;
@@ -104,6 +111,10 @@ struct FrameSettings {
   Output output = Output::Color;
   int shadow_map_size = 1024;
   bool inspect = false;  // overlay: silhouette quads, topology problems, focus body (colour output only)
+  // The light's radius for the soft techniques (edsm-soft, pcf-soft): a disc facing
+  // the receiver, world units for a point or spot light, radians (its angular
+  // radius) for a directional light. 0: a point light (their hard answer).
+  float light_radius = 0;
 };
 
 struct State;  // the one state struct (GL objects, buffers, cached programs)

@@ -1,0 +1,46 @@
+#version 450 core
+// Soft shadows from edge distance (001, Sect. 6 and Fig. 6.1; 000, Sect. 3.2):
+// the edge distance shadow map's signed distance, reconstructed by one bilinear
+// interpolation as in lookup_edsm.frag, becomes a light fraction through the
+// kernel of a disc light (soft_light.frag): the distance in units of the
+// penumbra's half width, estimated from the receiver's distance behind the
+// stored edge. No further filtering. The edge map reaches as far from each
+// silhouette as the widest penumbra of the frame (soft.cpp); where one of the
+// four texels holds no edge, or the receiver is not behind the edges, or a
+// texel's side of its edge disagrees with its depth comparison (crossing
+// shadows), the hard answer stands (the nearest texel's comparison).
+uniform mat4 u_light_matrix;
+uniform sampler2DShadow u_shadow_map;  // comparison sampler, gathered
+uniform sampler2D u_distance_map;      // RG32F: signed distance in texels, edge depth
+
+float penumbra_texels(float zo, float zr);
+float disc_fraction(float x);
+
+float shadow_visibility(vec3 world, vec3 normal) {
+  vec4 c = u_light_matrix * vec4(world, 1.0);
+  if (c.w <= 0.0) return 1.0;
+  vec3 p = c.xyz / c.w * 0.5 + 0.5;
+  if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
+  ivec2 size = textureSize(u_distance_map, 0);
+  vec2 tc = p.xy * vec2(size) - 0.5;
+  ivec2 i = ivec2(floor(tc));
+  vec2 f = tc - floor(tc);
+  vec4 g = textureGather(u_shadow_map, p.xy, p.z);  // (0,1) (1,1) (1,0) (0,0)
+  float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
+  float d[4];
+  float edge_depth = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    vec2 t = texelFetch(u_distance_map, clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0).rg;
+    if (abs(t.r) > 1.0e6) return nearest;
+    d[k] = t.r;
+    edge_depth = max(edge_depth, t.g);
+  }
+  if (p.z <= edge_depth + 1.0e-4) return nearest;
+  vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
+  for (int k = 0; k < 4; ++k)
+    if ((d[k] <= 0.0) != (lit[k] > 0.5)) return nearest;
+  float dist = mix(mix(d[0], d[1], f.x), mix(d[2], d[3], f.x), f.y);
+  float h = penumbra_texels(edge_depth, p.z);
+  if (h < 0.5) return dist > 0.0 ? 0.0 : 1.0;  // narrower than the map resolves: the hard edge
+  return disc_fraction(dist / h);
+}
