@@ -13,6 +13,7 @@
 #include <random>
 #include <regex>
 
+#include "geom/shadow_error.h"
 #include "geom/shadow_reference.h"
 #include "gl_fixtures.h"
 #include "viewer_run.h"
@@ -101,31 +102,31 @@ TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
   ASSERT_EQ(g.width, 3 * 160 + 2 * 2);
   ASSERT_EQ(g.height, 120);
   const std::vector<std::string> hud = grid.lines("hud: ");
-  ASSERT_EQ(hud.size(), 9u) << grid.out;
+  ASSERT_EQ(hud.size(), 12u) << grid.out;
   const char* names[3] = {"ssm", "edsm", "sv"};
   for (int i = 0; i < 3; ++i) {
     SCOPED_TRACE(names[i]);
-    EXPECT_EQ(hud[3 * i], std::string(names[i]) + (i < 2 ? " 1024" : ""));
-    EXPECT_TRUE(std::regex_match(hud[3 * i + 1], std::regex(R"(shadow [0-9.]+ ms, frame [0-9.]+ ms \((GPU|wall)\))")))
-        << hud[3 * i + 1];
+    EXPECT_EQ(hud[4 * i], std::string(names[i]) + (i < 2 ? " 1024" : ""));
+    EXPECT_TRUE(std::regex_match(hud[4 * i + 1], std::regex(R"(shadow [0-9.]+ ms, frame [0-9.]+ ms \((GPU|wall)\))")))
+        << hud[4 * i + 1];
     // The panel's error is the CLI's for the same view.
     const ViewerRun cli =
         geomview(s, obj + " " + kView + " --size 160x120 --error --technique " + names[i] + " -o " + (s / "one.png"));
     ASSERT_EQ(cli.exit_code, 0) << cli.err;
-    EXPECT_EQ(cli.lines(std::string(names[i]) + " "), std::vector<std::string>{hud[3 * i + 2]});
+    EXPECT_EQ(cli.lines(std::string(names[i]) + " "), (std::vector<std::string>{hud[4 * i + 2], hud[4 * i + 3]}));
     // Below its label the panel is the technique's own image; the label changed the top left.
     const geom::PngImage one = read_rgb(s / "one.png");
     size_t differ = 0, labelled = 0;
     for (int y = 0; y < 120; ++y)
       for (int x = 0; x < 160; ++x) {
         const bool same = std::equal(pixel(one, x, y), pixel(one, x, y) + 3, pixel(g, i * 162 + x, y));
-        if (y >= 70) differ += !same;
+        if (y >= 100) differ += !same;  // below the label's 4 lines
         if (y < 40 && x < 120) labelled += !same;
       }
     EXPECT_EQ(differ, 0u);
     EXPECT_GT(labelled, 500u);
   }
-  // All techniques: one panel each, 4 columns for 10-12.
+  // All techniques: one panel each, 4 columns for 10-16.
   const ViewerRun all = geomview(s, obj + " " + kView + " --size 64x48 --compare all -o " + (s / "all.png"));
   ASSERT_EQ(all.exit_code, 0) << all.err;
   const size_t n = render::available_techniques().size();
@@ -133,26 +134,26 @@ TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
   const geom::PngImage a = read_rgb(s / "all.png");
   EXPECT_EQ(a.width, columns * 64 + (columns - 1) * 2);
   EXPECT_EQ(a.height, rows * 48 + (rows - 1) * 2);
-  EXPECT_EQ(all.lines("hud: ").size(), 3 * n);
-  // 2 to 12 panels.
+  EXPECT_EQ(all.lines("hud: ").size(), 4 * n);
+  // 2 to 16 panels.
   const ViewerRun one = geomview(s, obj + " --compare ssm -o " + (s / "x.png"));
   EXPECT_EQ(one.exit_code, 1);
-  EXPECT_NE(one.err.find("2 to 12"), std::string::npos) << one.err;
+  EXPECT_NE(one.err.find("2 to 16"), std::string::npos) << one.err;
 }
 
 TEST(GlViewer, HudFiguresAreTheCliAndTheReference) {
   Scratch s("hud");
   const std::string obj = write(s, "scene.obj", kScene);
-  const std::string base = obj + " " + kView + " --size 200x150 --shadow-map-size 128 --technique pcf ";
+  const std::string base = obj + " " + kView + " --size 400x300 --shadow-map-size 128 --technique pcf ";
   const ViewerRun hud = geomview(s, base + "--hud -o " + (s / "hud.png"));
   ASSERT_EQ(hud.exit_code, 0) << hud.err;
   const std::vector<std::string> lines = hud.lines("hud: ");
-  ASSERT_GE(lines.size(), 4u) << hud.out;
+  ASSERT_GE(lines.size(), 5u) << hud.out;
   EXPECT_EQ(lines[0], "pcf 128");
   // The error: the CLI's line, and the one computed here from the mask and the reference.
   const ViewerRun cli = geomview(s, base + "--error -o " + (s / "plain.png"));
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
-  EXPECT_EQ(cli.lines("pcf "), std::vector<std::string>{lines[2]});
+  EXPECT_EQ(cli.lines("pcf "), (std::vector<std::string>{lines[2], lines[3]}));
   ASSERT_EQ(geomview(s, base + "--output mask -o " + (s / "mask.png")).exit_code, 0);
   geom::PngImage mask;
   std::string error;
@@ -174,34 +175,42 @@ TEST(GlViewer, HudFiguresAreTheCliAndTheReference) {
       }
     }
   }
-  const geom::Camera view = gltest::camera({3, 4, 6}, {0, 0.3f, 0}, 50, 0.1f, 100, 200, 150);
+  const geom::Camera view = gltest::camera({3, 4, 6}, {0, 0.3f, 0}, 50, 0.1f, 100, 400, 300);
   const geom::ShadowReference ref = geom::shadow_reference(geom::positions_of(p.data(), p.size() / 3), idx.data(),
                                                            idx.size(), view, gltest::point_light({1, 5, 2}));
   ASSERT_TRUE(ref.ok) << ref.error;
   EXPECT_EQ(lines[2], error_line(mask, ref));
+  // The per-class figures: geom/shadow_error.h's, as geombench reports them.
+  const geom::ShadowError classes = geom::shadow_error(mask.pixels, ref);
+  char per_class[128];
+  std::snprintf(per_class, sizeof per_class, "per class: %.3f%% cast, %.3f%% self", 100 * classes.error_cast,
+                100 * classes.error_self);
+  EXPECT_EQ(lines[3], per_class);
   // The passes: the names the CLI's --frames prints, each with its time.
   const ViewerRun frames = geomview(s, base + "--frames 2 -o " + (s / "f.png"));
   ASSERT_EQ(frames.exit_code, 0) << frames.err;
   std::vector<std::string> cli_passes, hud_passes;
   for (const std::string& l : frames.lines("pcf frame 1:")) {
     std::smatch m;
-    for (std::string rest = l; std::regex_search(rest, m, std::regex(R"( ([a-z +()]+?) [0-9.]+ ms)"));
+    for (std::string rest = l; std::regex_search(rest, m, std::regex(R"( ([a-zA-Z +(),-]+?) [0-9.]+ ms)"));
          rest = m.suffix())
       if (m[1] != "total") cli_passes.push_back(m[1]);
   }
-  for (size_t i = 3; i < lines.size(); ++i)
+  for (size_t i = 4; i < lines.size(); ++i)
     hud_passes.push_back(lines[i].substr(2, lines[i].rfind(' ', lines[i].size() - 4) - 2));
   EXPECT_EQ(hud_passes, cli_passes) << hud.out << frames.out;
   // The HUD is drawn into the top left of the image, and nowhere else.
   const geom::PngImage a = read_rgb(s / "hud.png"), b = read_rgb(s / "plain.png");
   size_t top_left = 0, elsewhere = 0;
-  for (int y = 0; y < 150; ++y)
-    for (int x = 0; x < 200; ++x) {
+  const int hud_bottom = 8 + 10 + 19 * int(lines.size());  // the box's padding and line height, with a margin
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 400; ++x) {
       const bool same = std::equal(pixel(a, x, y), pixel(a, x, y) + 3, pixel(b, x, y));
-      (x < 120 && y < 40 ? top_left : elsewhere) += !same;
+      if (x < 200 && y < 40) top_left += !same;
+      if (y > hud_bottom) elsewhere += !same;
     }
-  EXPECT_GT(top_left, 500u);
-  EXPECT_LT(elsewhere, size_t(200 * 150 / 2));
+  EXPECT_GT(top_left, 1000u);
+  EXPECT_EQ(elsewhere, 0u);
 }
 
 glm::vec2 project(glm::vec3 p) {
@@ -279,6 +288,41 @@ TEST(GlViewer, InspectionShowsOaDm1sNonManifoldEdges) {
   const geom::PngImage im = read_rgb(s / "plain.png");
   EXPECT_GT(count_colour(im, red), 300u);
   EXPECT_GT(count_colour(im, yellow), 1000u);
+}
+
+// Issue 17: an installed geomview (bin/ beside share/geom/shaders) reads the
+// shaders beside it, whatever the source tree; GEOMVIEW_SHADERS and --shaders
+// override it.
+TEST(GlViewer, ShadersAreFoundBesideTheBinary) {
+  Scratch s("install");
+  fs::create_directories(s.dir / "prefix/bin");
+  fs::create_directories(s.dir / "prefix/share/geom");
+  fs::copy(GEOMVIEW_EXE, s.dir / "prefix/bin/geomview");
+  fs::copy(GEOM_SHADER_DIR, s.dir / "prefix/share/geom/shaders", fs::copy_options::recursive);
+  const std::string obj = write(s, "scene.obj", kScene);
+  const std::string installed = (s.dir / "prefix/bin/geomview").string();
+  const std::string out = s / "x.png", log = s / "log.txt";
+  auto run = [&](const std::string& prefix, const std::string& args) {
+    const int rc =
+        std::system((prefix + installed + " " + obj + " --size 32x24 -o " + out + " " + args + " 2>" + log).c_str());
+    return std::make_pair(rc, slurp(log));
+  };
+  const auto [rc, err] = run("env -u GEOMVIEW_SHADERS ", "");
+  ASSERT_EQ(rc, 0) << err;
+  EXPECT_NE(err.find("shaders from " + (s.dir / "prefix/share/geom/shaders").string() + "\n"), std::string::npos)
+      << err;
+  const auto [rc2, err2] = run("GEOMVIEW_SHADERS=" + std::string(GEOM_SHADER_DIR) + " ", "");
+  ASSERT_EQ(rc2, 0) << err2;
+  EXPECT_NE(err2.find("shaders from " + std::string(GEOM_SHADER_DIR) + "\n"), std::string::npos) << err2;
+  const auto [rc3, err3] = run("GEOMVIEW_SHADERS=/nonexistent ", "--shaders " + std::string(GEOM_SHADER_DIR));
+  ASSERT_EQ(rc3, 0) << err3;
+  // Without any shaders beside it, the source tree's.
+  fs::remove_all(s.dir / "prefix/share/geom/shaders");
+  const auto [rc4, err4] = run("env -u GEOMVIEW_SHADERS ", "");
+  ASSERT_EQ(rc4, 0) << err4;
+  EXPECT_NE(err4.find("shaders from " + fs::path(GEOM_SHADER_DIR).lexically_normal().string() + "\n"),
+            std::string::npos)
+      << err4;
 }
 
 // The default framing keeps every corner of the scene's box inside the image

@@ -48,7 +48,8 @@ bool render_grid(render::State& state, const geom::Scene& scene, const std::vect
     }
     Label l;
     l.x = x0 + 6, l.y = y0 + 6;
-    l.lines = hud_lines(f, false);
+    l.clip[0] = x0, l.clip[1] = y0, l.clip[2] = x0 + view.width, l.clip[3] = y0 + view.height;
+    l.lines = view.width < 340 ? compact_lines(f) : hud_lines(f, false);  // readable in a small panel
     g.labels.push_back(l);
     g.figures.push_back(f);
   }

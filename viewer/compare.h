@@ -1,5 +1,5 @@
 // compare.h: techniques side by side. One camera and light, one panel per
-// technique (2 to 12), each labelled with its technique, map size, shadow
+// technique (2 to 16), each labelled with its technique, map size, shadow
 // pass time and error against the exact reference (computed once for the
 // grid); headless into one PNG (--compare), and as the window's grid (C).
 #pragma once
@@ -19,7 +19,7 @@ struct Grid {
   std::vector<Figures> figures;  // per panel, in order
 };
 
-// Columns for n panels: 1-3 in a row, 4 as 2x2, 5-9 in rows of 3, 10-12 in rows of 4.
+// Columns for n panels: 1-3 in a row, 4 as 2x2, 5-9 in rows of 3, 10-16 in rows of 4.
 int grid_columns(size_t n);
 
 // Renders every technique at panel_view's size (a warm-up frame, then the

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "geom/shadow_error.h"
 #include "geom/span.h"
 
 namespace viewer {
@@ -35,11 +36,11 @@ double total_ms(const std::vector<render::PassTime>& times) {
   return ms;
 }
 
-std::string error_line(const ErrorFigures& e) {
-  if (!e.valid) return "error: press E";
-  std::string s = format("error %.3f%% visible, %.2f%% boundary", 100 * e.visible, 100 * e.boundary);
-  if (e.has_classes) s += format(", %.2f%% cast, %.2f%% self", 100 * e.cast, 100 * e.self);
-  return s;
+std::vector<std::string> error_lines(const ErrorFigures& e) {
+  if (!e.valid) return {"error: press E"};
+  std::vector<std::string> lines = {format("error %.3f%% visible, %.2f%% boundary", 100 * e.visible, 100 * e.boundary)};
+  if (e.has_classes) lines.push_back(format("per class: %.3f%% cast, %.3f%% self", 100 * e.cast, 100 * e.self));
+  return lines;
 }
 
 std::vector<std::string> hud_lines(const Figures& f, bool passes) {
@@ -53,9 +54,20 @@ std::vector<std::string> hud_lines(const Figures& f, bool passes) {
   }
   lines.push_back(format("shadow %.2f ms, frame %.2f ms", shadow_ms(f.times), total_ms(f.times)) +
                   (f.gpu_timers ? " (GPU)" : " (wall)"));
-  lines.push_back(error_line(f.error));
+  for (const std::string& l : error_lines(f.error)) lines.push_back(l);
   if (passes)
     for (const render::PassTime& t : f.times) lines.push_back("  " + t.pass + format(" %.2f ms", t.ms));
+  return lines;
+}
+
+std::vector<std::string> compact_lines(const Figures& f) {
+  std::vector<std::string> lines = hud_lines(f, false);
+  if (lines.size() < 3 || !f.message.empty()) return lines;
+  lines[1] = format("%.2f ms", shadow_ms(f.times)) + (f.gpu_timers ? " (GPU)" : " (wall)");
+  if (!f.error.valid) return lines;
+  lines.resize(2);
+  lines.push_back(format("err %.3f%%, bnd %.2f%%", 100 * f.error.visible, 100 * f.error.boundary));
+  if (f.error.has_classes) lines.push_back(format("cast %.2f%%, self %.2f%%", 100 * f.error.cast, 100 * f.error.self));
   return lines;
 }
 
@@ -64,51 +76,31 @@ bool make_reference(const geom::Scene& scene, const geom::Camera& camera, const 
   out.ref = geom::shadow_reference(geom::positions_of(scene.positions.data(), scene.vertex_count()),
                                    scene.indices.data(), scene.indices.size(), camera, light);
   if (!out.ref.ok) return error = "reference: " + out.ref.error, false;
-  const int w = out.ref.width, h = out.ref.height, radius = 3;
-  std::vector<uint8_t> edge(size_t(w) * h, 0);
-  out.band.assign(size_t(w) * h, 0);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const uint8_t v = out.ref.mask[size_t(y) * w + x];
-      if (v == 128) continue;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int u = x + dx, t = y + dy;
-          if (u < 0 || t < 0 || u >= w || t >= h) continue;
-          const uint8_t n = out.ref.mask[size_t(t) * w + u];
-          if (n != 128 && n != v) edge[size_t(y) * w + x] = 1;
-        }
-    }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (!edge[size_t(y) * w + x]) continue;
-      for (int t = std::max(0, y - radius); t <= std::min(h - 1, y + radius); ++t)
-        for (int u = std::max(0, x - radius); u <= std::min(w - 1, x + radius); ++u) out.band[size_t(t) * w + u] = 1;
-    }
   return true;
 }
 
+// geom/shadow_error.h scores (geombench's figures); the overlay colours its wrong pixels.
 ErrorFigures score(const std::vector<uint8_t>& mask, const Reference& r, std::vector<uint8_t>* overlay) {
+  geom::ShadowErrorOptions options;
+  options.wrong_mask = overlay != nullptr;
+  const geom::ShadowError s = geom::shadow_error(mask, r.ref, options);
   ErrorFigures e;
-  const geom::ShadowReference& ref = r.ref;
-  const size_t n = ref.mask.size();
-  if (overlay) overlay->assign(n * 4, 0);
-  size_t wrong_v = 0, wrong_b = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (ref.mask[i] == 128 || ref.uncertain[i]) continue;
-    const uint8_t m = i < mask.size() ? mask[i] : 128;
-    const bool wrong = m != ref.mask[i];
-    ++e.visible_pixels, wrong_v += wrong;
-    if (r.band[i]) ++e.boundary_pixels, wrong_b += wrong;
-    if (wrong && overlay) {
+  e.valid = true;
+  e.visible = s.error_visible, e.boundary = s.error_boundary;
+  e.has_classes = true;
+  e.cast = s.error_cast, e.self = s.error_self;
+  e.visible_pixels = s.visible_pixels, e.boundary_pixels = s.boundary_pixels;
+  if (overlay) {
+    const size_t n = r.ref.mask.size();
+    overlay->assign(n * 4, 0);
+    for (size_t i = 0; i < n && i < s.wrong.size(); ++i) {
+      const auto w = geom::WrongPixel(s.wrong[i]);
+      if (w == geom::WrongPixel::Right || w == geom::WrongPixel::Uncertain) continue;
       uint8_t* p = overlay->data() + 4 * i;
-      const bool false_shadow = m == 0;
+      const bool false_shadow = i < mask.size() && mask[i] == 0;
       p[0] = false_shadow ? 255 : 40, p[1] = 40, p[2] = false_shadow ? 40 : 255, p[3] = 200;
     }
   }
-  e.visible = e.visible_pixels ? double(wrong_v) / double(e.visible_pixels) : 0.0;
-  e.boundary = e.boundary_pixels ? double(wrong_b) / double(e.boundary_pixels) : 0.0;
-  e.valid = true;
   return e;
 }
 

@@ -36,20 +36,25 @@ double shadow_ms(const std::vector<render::PassTime>& times);
 double total_ms(const std::vector<render::PassTime>& times);
 
 // The HUD's lines: "pcf 1024"; "shadow 1.23 ms, frame 2.50 ms (GPU)", or
-// "(wall)" for wall time around glFinish on a software rasterizer; "error
-// 0.520% visible, 3.10% boundary"; then each pass's time.
+// "(wall)" for wall time around glFinish on a software rasterizer; the
+// error_lines; then each pass's time.
 std::vector<std::string> hud_lines(const Figures& f, bool passes = true);
-std::string error_line(const ErrorFigures& e);
+// "error 0.520% visible, 3.10% boundary" and "per class: 0.400% cast, 0.100% self".
+std::vector<std::string> error_lines(const ErrorFigures& e);
 
-// The exact reference of one camera and light, with what scoring needs.
+// The same figures in lines of at most about 22 characters, for small grid panels.
+std::vector<std::string> compact_lines(const Figures& f);
+
+// The exact reference of one camera and light (its objects: the connected
+// components of the scene, as geombench takes them).
 struct Reference {
   geom::ShadowReference ref;
-  std::vector<uint8_t> band;  // within 3 pixels of a true shadow boundary
 };
 bool make_reference(const geom::Scene& scene, const geom::Camera& camera, const geom::Light& light, Reference& out,
                     std::string& error);
 
-// Scores a mask (255 lit, 0 shadow, 128 no geometry; reference layout). With
+// Scores a mask (255 lit, 0 shadow, 128 no geometry; reference layout) with
+// geom/shadow_error.h: error_visible, error_boundary, error_cast, error_self. With
 // `overlay`, an RGBA image of the wrong pixels: red where the technique
 // shadows a lit pixel, blue where it lights a shadowed one, transparent
 // elsewhere.

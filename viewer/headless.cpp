@@ -65,7 +65,8 @@ int run_headless(Options& o, Session& s) {
     }
     if (measure && !measure_error(*s.state, ref, o.view, o.light, settings, f.error, nullptr, error))
       return fail(o.file + ": " + render::technique_name(t) + ": " + error);
-    if (o.error && !o.hud) std::printf("%s %s\n", render::technique_name(t), error_line(f.error).c_str());
+    if (o.error && !o.hud)
+      for (const std::string& l : error_lines(f.error)) std::printf("%s %s\n", render::technique_name(t), l.c_str());
     if (o.hud) {
       const std::vector<std::string> lines = hud_lines(f);
       print_lines(lines);

@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   viewer::Session session;
   std::string error;
   if (!viewer::open_session(options, session, error)) return viewer::fail(error);
-  std::fprintf(stderr, "geomview: %s, %s (%zu triangles)\n", session.platform->description().c_str(),
-               render::renderer_name(*session.state).c_str(), session.scene.triangle_count());
+  std::fprintf(stderr, "geomview: %s, %s (%zu triangles), shaders from %s\n", session.platform->description().c_str(),
+               render::renderer_name(*session.state).c_str(), session.scene.triangle_count(), options.shaders.c_str());
   return session.platform->has_window() ? viewer::run_window(options, session) : viewer::run_headless(options, session);
 }

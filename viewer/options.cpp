@@ -25,7 +25,7 @@ const char* kUsage =
     "                                    process; the bundled default scene when absent)\n"
     "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform esm-exact sssm\n"
     "                             edsm-soft pcf-soft, or all\n"
-    "  --compare NAME,NAME[,..]   a grid of 2 to 12 techniques from one camera and light, each panel labelled\n"
+    "  --compare NAME,NAME[,..]   a grid of 2 to 16 techniques from one camera and light, each panel labelled\n"
     "                             with technique, map size, pass time and error (or all); -o grid.png headless\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"
     "  --up-axis x|y|z            the scene's up axis for the default framing (default: z for Quake 3's\n"
@@ -122,10 +122,26 @@ int format_up_axis(const std::string& path) {
 
 int parse_options(int argc, char** argv, Options& o) {
   cli::Args args(std::vector<std::string>(argv + 1, argv + argc),
-                 {"--help", "-h", "--inspect", "--window", "--hud", "--error"},
-                 {"--technique", "--compare", "--eye", "--target", "--up", "--fovy", "--near", "--far", "--light",
-                  "--spot", "--shadow-map-size", "--size", "-o", "--output", "--frames", "--shaders", "--up-axis",
-                  "--script", "--screenshot", "--light-radius"});
+                 {"--help", "-h", "--inspect", "--window", "--hud", "--error"}, {"--technique",
+                                                                                 "--compare",
+                                                                                 "--eye",
+                                                                                 "--target",
+                                                                                 "--up",
+                                                                                 "--fovy",
+                                                                                 "--near",
+                                                                                 "--far",
+                                                                                 "--light",
+                                                                                 "--spot",
+                                                                                 "--shadow-map-size",
+                                                                                 "--size",
+                                                                                 "-o",
+                                                                                 "--output",
+                                                                                 "--frames",
+                                                                                 "--shaders",
+                                                                                 "--up-axis",
+                                                                                 "--script",
+                                                                                 "--screenshot",
+                                                                                 "--light-radius"});
   if (!args.error().empty()) return fail(args.error() + " (see geomview --help)"), cli::kExitUsage;
   if (args.has("--help") || args.has("-h")) {
     std::printf(kUsage, default_shaders().c_str());
@@ -139,8 +155,8 @@ int parse_options(int argc, char** argv, Options& o) {
   if (o.techniques.empty()) o.techniques.push_back(render::Technique::Pcf);
   if (args.has("--compare")) {
     if (!parse_techniques(args.all("--compare"), o.compare, error)) return fail(error);
-    if (o.compare.size() < 2 || o.compare.size() > 12)
-      return fail("--compare takes 2 to 12 techniques, not " + std::to_string(o.compare.size()));
+    if (o.compare.size() < 2 || o.compare.size() > 16)
+      return fail("--compare takes 2 to 16 techniques, not " + std::to_string(o.compare.size()));
   }
   o.settings.inspect = args.has("--inspect");
   const std::string output = args.get("--output", "color");

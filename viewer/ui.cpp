@@ -48,6 +48,10 @@ void draw_label(ImDrawList* list, const Label& label) {
     const bool has = i < label.swatches.size() && label.swatches[i][3] > 0;
     width = std::max(width, ImGui::CalcTextSize(label.lines[i].c_str()).x + (has ? swatch + 6 : 0));
   }
+  const bool clipped = label.clip[2] > label.clip[0];
+  if (clipped)
+    list->PushClipRect(ImVec2(float(label.clip[0]), float(label.clip[1])),
+                       ImVec2(float(label.clip[2]), float(label.clip[3])), true);
   const ImVec2 a(float(label.x), float(label.y));
   const ImVec2 b(a.x + width + 2 * pad, a.y + line_h * float(label.lines.size()) + 2 * pad - 2);
   list->AddRectFilled(a, b, IM_COL32(0, 0, 0, 190), 3);
@@ -61,6 +65,7 @@ void draw_label(ImDrawList* list, const Label& label) {
     list->AddText(ImVec2(x, y), i == 0 ? IM_COL32(255, 255, 255, 255) : IM_COL32(225, 228, 235, 255),
                   label.lines[i].c_str());
   }
+  if (clipped) list->PopClipRect();
 }
 
 std::array<float, 4> swatch(render::InspectKind kind) {

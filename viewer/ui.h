@@ -21,6 +21,7 @@ struct Label {
   int x = 0, y = 0;
   std::vector<std::string> lines;
   std::vector<std::array<float, 4>> swatches;  // per line, alpha 0: none
+  int clip[4] = {0, 0, 0, 0};                  // x0 y0 x1 y1: drawn only inside (a grid panel); x1 0: no clip
 };
 
 // The legend of the inspection overlay: each colour with its count.

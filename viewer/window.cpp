@@ -56,14 +56,16 @@ int run_window(Options& o, Session& s) {
   for (size_t i = 0; i < m.all.size(); ++i)
     if (m.all[i] == o.techniques[0]) m.current = i;
   m.compare_pick.assign(m.all.size(), false);
-  const std::vector<render::Technique> picks =
-      o.compare.empty() ? std::vector<render::Technique>{render::Technique::Ssm, render::Technique::Pcf,
-                                                         render::Technique::Edsm, render::Technique::Sv}
-                        : o.compare;
-  for (render::Technique t : picks)
+  // The grid's techniques: --compare, else several --technique (all: the first 16), else four defaults.
+  std::vector<render::Technique> picks = o.compare;
+  if (picks.empty() && o.techniques.size() > 1) picks = o.techniques;
+  const bool open_on_grid = !picks.empty();
+  if (picks.empty())
+    picks = {render::Technique::Ssm, render::Technique::Pcf, render::Technique::Edsm, render::Technique::Sv};
+  for (size_t k = 0; k < picks.size() && k < 16; ++k)
     for (size_t i = 0; i < m.all.size(); ++i)
-      if (m.all[i] == t) m.compare_pick[i] = true;
-  m.compare = !o.compare.empty();
+      if (m.all[i] == picks[k]) m.compare_pick[i] = true;
+  m.compare = open_on_grid;
   m.light_kind = light.type == geom::LightType::Directional ? 2 : light.type == geom::LightType::Spot ? 1 : 0;
   float bounds[4];
   render::scene_bounds(*s.state, bounds);
@@ -154,7 +156,7 @@ int run_window(Options& o, Session& s) {
     if (m.settings.inspect && !m.counts_valid) m.counts_valid = render::inspection_counts(*s.state, m.counts, error);
     if (fb_w > 0 && fb_h > 0 && m.compare) {
       std::vector<render::Technique> picked;
-      for (size_t i = 0; i < m.all.size() && picked.size() < 12; ++i)
+      for (size_t i = 0; i < m.all.size() && picked.size() < 16; ++i)
         if (m.compare_pick[i]) picked.push_back(m.all[i]);
       if (picked.empty()) picked.push_back(m.settings.technique);
       std::string gk = key;
