@@ -55,8 +55,19 @@ std::vector<std::string> hud_lines(const Figures& f, bool passes) {
   lines.push_back(format("shadow %.2f ms, frame %.2f ms", shadow_ms(f.times), total_ms(f.times)) +
                   (f.gpu_timers ? " (GPU)" : " (wall)"));
   for (const std::string& l : error_lines(f.error)) lines.push_back(l);
-  if (passes)
-    for (const render::PassTime& t : f.times) lines.push_back("  " + t.pass + format(" %.2f ms", t.ms));
+  if (passes) {  // each pass once, in order; repeated ones (a cube map's six faces) summed as "name x6"
+    std::vector<std::pair<std::string, std::pair<double, int>>> merged;
+    for (const render::PassTime& t : f.times) {
+      auto it = std::find_if(merged.begin(), merged.end(), [&](const auto& m) { return m.first == t.pass; });
+      if (it == merged.end())
+        merged.push_back({t.pass, {t.ms, 1}});
+      else
+        it->second.first += t.ms, ++it->second.second;
+    }
+    for (const auto& [name, v] : merged)
+      lines.push_back("  " + name + (v.second > 1 ? " x" + std::to_string(v.second) : "") +
+                      format(" %.2f ms", v.first));
+  }
   return lines;
 }
 
