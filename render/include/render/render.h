@@ -46,7 +46,21 @@
 namespace render {
 
 enum class Technique {
-  Ssm, Pcf, Esm, Edsm, Sv, SvZPass, SvZFail, Cube, Psm, Lispsm, Uniform, EsmExact, Sssm, EdsmSoft, PcfSoft
+  Ssm,
+  Pcf,
+  Esm,
+  Edsm,
+  Sv,
+  SvZPass,
+  SvZFail,
+  Cube,
+  Psm,
+  Lispsm,
+  Uniform,
+  EsmExact,
+  Sssm,
+  EdsmSoft,
+  PcfSoft
 };
 
 // The names of --technique, in order; only techniques this build renders.
