@@ -499,7 +499,7 @@ inline bool read_regular_file(const std::string& path, std::vector<unsigned char
     return false;
   }
   bytes.resize(size_t(size));
-  std::memcpy(bytes.data(), head, got_head);
+  if (got_head) std::memcpy(bytes.data(), head, got_head);  // an empty file: bytes.data() may be null
   size_t got = got_head + (size > got_head ? std::fread(bytes.data() + got_head, 1, bytes.size() - got_head, f) : 0);
   std::fclose(f);
   if (got != bytes.size()) {
