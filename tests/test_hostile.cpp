@@ -480,7 +480,10 @@ TEST(Hostile, TimedOutWorkIsStopped) {
   EXPECT_EQ(both.exit_code, 1) << cli::describe(both);
   EXPECT_TRUE(has(both.err, "slow.gltf: timed out after")) << both.err;
   EXPECT_EQ(cli::listing(d / "q2").size(), size_t(quick)) << both.err.substr(0, 2000);
-  EXPECT_LT(both.cpu_seconds, alone.cpu_seconds + 0.4 * slow.cpu_seconds)
+  // Work left running would add the whole slow input (1.0); under a sanitizer
+  // the quick inputs' own CPU time varies by up to ~10%, so the bar sits higher there.
+  const double kept = cli::kSanitizerFactor > 1 ? 0.6 : 0.4;
+  EXPECT_LT(both.cpu_seconds, alone.cpu_seconds + kept * slow.cpu_seconds)
       << "slow alone " << slow.cpu_seconds << " s, " << quick << " quick alone " << alone.cpu_seconds << " s";
 }
 
