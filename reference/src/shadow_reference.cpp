@@ -13,30 +13,12 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "ray_math.h"
+
 namespace geom {
 namespace {
 
-struct V3 {
-  double x, y, z;
-};
-V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-V3 normalize(V3 a) {
-  double l = std::sqrt(dot(a, a));
-  return l > 0 ? a * (1 / l) : a;
-}
-V3 v3(const float* p) { return {p[0], p[1], p[2]}; }
-V3 v3(const double* p) { return {p[0], p[1], p[2]}; }
-
-struct DeviceDeleter {
-  void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); }
-};
-struct SceneDeleter {
-  void operator()(RTCSceneTy* s) const { rtcReleaseScene(s); }
-};
+using namespace ray_math;  // V3, dot, cross, the Embree owners (ray_math.h)
 
 template <class T>
 bool finite3(const T* p) {
