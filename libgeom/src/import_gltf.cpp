@@ -1305,4 +1305,16 @@ bool import_gltf(const ImportInput& in, Scene& out, std::string& error) {
   return false;
 }
 
+std::vector<std::string> gltf_buffer_uris(const unsigned char* data, size_t size) {
+  std::vector<std::string> uris;
+  const Json doc = Json::parse(data, data + size, nullptr, false);
+  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return uris;
+  for (const auto& b : doc["buffers"]) {
+    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+    std::string uri = b["uri"].get<std::string>();
+    if (uri.rfind("data:", 0) != 0) uris.push_back(std::move(uri));
+  }
+  return uris;
+}
+
 }  // namespace geom::detail
