@@ -55,8 +55,8 @@ AreaReference area_light_reference(PositionSpan positions, const uint32_t* indic
   if (!(radius >= 0) || !std::isfinite(radius) || (position[3] == 0 && radius >= M_PI / 2))
     return out.error = "area reference: light radius out of range", out;
   RayCast cast;
-  out.error = prepare_ray_cast("area reference", positions, indices, index_count, camera, light, RTC_SCENE_FLAG_NONE,
-                               cast);
+  out.error =
+      prepare_ray_cast("area reference", positions, indices, index_count, camera, light, RTC_SCENE_FLAG_NONE, cast);
   if (!out.error.empty()) return out;
   const RayScene& rs = cast.scene;
   const EyeRays& eye = cast.eye;
