@@ -449,7 +449,7 @@ bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const Fo
       double s = std::sin(angle), c = std::cos(angle);
       V3 b1 = any_perpendicular(axis), b2 = cross(axis, b1);
       for (V3 side : {b1, -b1, b2, -b2}) fr.l_planes.push_back(plane_through(fr.light_pos, axis * s - side * c));
-      fr.l_planes.push_back(plane_through(fr.light_pos + axis * fr.light_near, axis));
+      // L's near plane comes with the receivers (near_plane_cut), where its floor is known.
     }
   }
   return true;
@@ -485,6 +485,45 @@ bool view_frustum(const Frame& fr, V3 corners[8]) {
     corners[i] = V3(w.x, w.y, w.z);
   }
   return true;
+}
+
+// L's near half-space, at the floor of the map's near plane (FocusOptions::
+// light_near, or kNearFloor of the farthest receiver along the axis: depth
+// precision), and R cut by it. A point light's axis points from the light to
+// the receivers' centre. Receivers nearer than the floor (behind or beside a
+// point light, or at a spot's apex) are cut and the result says so
+// (near_floor_cut; a point light then needs its cube faces). H is cut by the
+// same plane (L's half-spaces); the map's near plane is then H's nearest
+// point (uniform_chain), the nearest that must be covered.
+constexpr double kNearFloor = 1e-3;
+
+void near_plane_cut(Frame& fr, const Light& light, const FocusOptions& opt, FocusResult& out) {
+  unique_vertices(fr.receivers, fr.eps, fr.r_verts);
+  if (light.type == LightType::Point) {
+    V3 c = box_centre(fr.r_verts);
+    fr.light_axis = length(c - fr.light_pos) > fr.eps ? normalize(c - fr.light_pos) : fr.view_dir;
+  }
+  double nearest = HUGE_VAL, farthest = 0;
+  for (V3 p : fr.r_verts) {
+    double d = dot(p - fr.light_pos, fr.light_axis);
+    nearest = std::fmin(nearest, d);
+    farthest = std::fmax(farthest, d);
+  }
+  double floor = opt.light_near > 0 ? opt.light_near : kNearFloor * farthest;
+  if (!(floor > fr.eps)) floor = fr.light_near;  // every receiver at or behind the light: the scene's scale
+  fr.light_near = floor;
+  if (nearest < floor - fr.eps) {
+    out.near_floor_cut = true;
+    if (light.type == LightType::Point) {
+      out.needs_cube_map = true;
+      set_fallback(out, FocusFallback::LightInsideView,
+                   "the point light lies among or beside the receivers: one shadow map covers only the "
+                   "half-space facing them; render its cube faces (focus_cube_faces)");
+    }
+  }
+  Plane near_plane = plane_through(fr.light_pos + fr.light_axis * fr.light_near, fr.light_axis);
+  fr.l_planes.push_back(near_plane);
+  clip_polytope(fr.receivers, near_plane, fr.eps, fr.scratch);
 }
 
 }  // namespace
@@ -541,7 +580,7 @@ bool focus::compute_focus_staged(const CameraMatrices& camera, const Light& ligh
   out.fallback = FocusFallback::None;
   out.reason = "";
   out.light_kind = out.psm_light_kind = LightKind::Directional;
-  out.needs_cube_map = false;
+  out.needs_cube_map = out.near_floor_cut = false;
   out.camera_shift = out.psm_near = out.psm_far = out.lispsm_n = out.light_near = 0;
   out.light_axis[0] = out.light_axis[1] = out.light_axis[2] = 0;
   out.vertices.clear();
@@ -577,24 +616,7 @@ bool focus::compute_focus_staged(const CameraMatrices& camera, const Light& ligh
     } else {
       fr.receivers.clear();
     }
-    if (light.type == LightType::Point && !fr.receivers.empty()) {
-      // A point light's L: the half-space at light_near beyond it, facing the
-      // receivers' centre. Receivers behind it cannot share one map.
-      unique_vertices(fr.receivers, fr.eps, fr.r_verts);
-      V3 c = box_centre(fr.r_verts);
-      fr.light_axis = length(c - fr.light_pos) > fr.eps ? normalize(c - fr.light_pos) : fr.view_dir;
-      Plane near_plane = plane_through(fr.light_pos + fr.light_axis * fr.light_near, fr.light_axis);
-      for (V3 p : fr.r_verts)
-        if (near_plane.eval(p) < -fr.eps) {
-          out.needs_cube_map = true;
-          set_fallback(out, FocusFallback::LightInsideView,
-                       "the point light lies among or beside the receivers: one shadow map covers only the "
-                       "half-space facing them; render its cube faces (focus_cube_faces)");
-          break;
-        }
-      fr.l_planes.push_back(near_plane);
-      clip_polytope(fr.receivers, near_plane, fr.eps, fr.scratch);
-    }
+    if (!fr.directional && !fr.receivers.empty()) near_plane_cut(fr, light, options, out);
     unique_vertices(fr.receivers, fr.eps, fr.r_verts);
     lap(&StageTimes::receivers);
     // H = conv(R u {l}) n S n L.
@@ -649,6 +671,8 @@ bool focus::compute_focus_staged(const CameraMatrices& camera, const Light& ligh
       V3 c[8];
       for (int i = 0; i < 8; ++i) c[i] = V3(i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]);
       frustum_polytope(c, fr.body);
+      if (light.type == LightType::Spot && fr.receivers.empty())  // no receiver set the near plane's floor
+        fr.l_planes.push_back(plane_through(fr.light_pos + fr.light_axis * fr.light_near, fr.light_axis));
       Polytope lit = fr.body;
       clip_polytope(lit, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
       if (!fr.directional && light.type == LightType::Point) fr.light_axis = fr.view_dir;
@@ -676,7 +700,12 @@ bool focus::compute_focus_staged(const CameraMatrices& camera, const Light& ligh
     }
     if (!fr.directional) {
       for (int k = 0; k < 3; ++k) out.light_axis[k] = fr.light_axis[k];
-      out.light_near = fr.light_near;
+      // The map's near plane: H's nearest point. At the floor, H was cut there
+      // (casters next to the light, or receivers): say so.
+      double nearest = HUGE_VAL;
+      for (V3 p : fr.h_verts) nearest = std::fmin(nearest, dot(p - fr.light_pos, fr.light_axis));
+      out.light_near = std::fmax(nearest, fr.light_near);
+      if (nearest <= fr.light_near + 4 * fr.eps) out.near_floor_cut = true;
     }
     lap(&StageTimes::faces);
 
