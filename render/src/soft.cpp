@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "state.h"
+#include "edge_pass.h"
 
 namespace render {
 namespace {
@@ -52,35 +52,17 @@ bool shade_scene(Frame& f) {
 
 bool edsm_soft_passes(Frame& f) {
   State& s = f.s;
-  const int n = f.n;
   f.light_frame = light_frame(s, f.light);
   const glm::mat4 light_clip = f.light_frame.clip();
-  if (!depth_map_pass(f, light_clip, 1.5f, false)) return false;
-  ensure_edge_map(s, n, GL_RG32F);
-  GLuint p = program(s.programs, {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"}, f.error);
+  GLuint p = edge_program(f, light_clip, 1.5f, GL_RG32F,
+                          {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
   if (!p) return false;
   set(p, "u_matrix", light_clip);
-  set(p, "u_map_size", float(n));
   set(p, "u_half_width", 2.0f);  // the hard edsm's
   set(p, "u_max_half_width", reach(f));
   set(p, "u_light_proj", f.light_frame.proj);
   set(p, "u_light_radius", f.fs.light_radius);
-  set(p, "u_depth", 1);
-  f.timer.begin("edge distance map");
-  glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
-  glViewport(0, 0, n, n);
-  const float none[4] = {3.0e38f, 0, 0, 0};
-  glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, none);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glBindTextureUnit(1, s.shadow_map.depth);
-  glBindSampler(1, depth_sampler(s));
-  glUseProgram(p);
-  for (const Caster& c : s.casters) {
-    glBindVertexArray(c.adjacency_vao);
-    glDrawElements(GL_TRIANGLES_ADJACENCY, c.adjacency_count, GL_UNSIGNED_INT, nullptr);
-  }
-  glBindSampler(1, 0);
-  f.timer.end();
+  adjacency_edge_pass(f, p, "edge distance map", EdgeTarget::Distance);
   finish_map(f);
   f.second_texture = s.edge_map.color;
   f.lookup = "lookup_edsm_soft.frag";

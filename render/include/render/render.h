@@ -13,6 +13,7 @@
 //   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame
 //   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
 //   esm.cpp, edsm.cpp ...... extended shadow map (seed 000), edge distance shadow map (seed 001)
+//   edge_pass.h, .cpp ...... the edge pass the silhouette maps share (esm, edsm, sssm, edsm-soft)
 //   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (seed 004)
 //   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, seed 001's baseline)
 //   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; seed 001 Sect. 6)
