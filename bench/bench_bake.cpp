@@ -47,9 +47,9 @@
 #include "geom/extrude.h"
 #include "geom/face_planes.h"
 #include "geom/import.h"
+#include "geom/pipeline.h"
 #include "geom/report.h"
 #include "geom/shadow_volume.h"
-#include "geom/silhouette.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
 #include "peers.h"
@@ -123,8 +123,8 @@ void tris_per_second(benchmark::State& state) {
 void BM_BakeAll(benchmark::State& state) {
   const Mesh& m = big();
   for (auto _ : state) {
-    auto b = geom::bake_silhouettes(geom::positions_of(m.positions.data(), m.vertex_count()), m.indices.data(),
-                                    m.triangle_count(), {});
+    auto b = geom::run_pipeline(geom::positions_of(m.positions.data(), m.vertex_count()), m.indices.data(),
+                                m.triangle_count());
     benchmark::DoNotOptimize(b.esm.quads.data());
   }
   tris_per_second(state);
@@ -250,11 +250,11 @@ void BM_MeshoptAdjacencyWelded(benchmark::State& state) {
 
 void print_savings() {
   const Mesh& m = big();
-  std::vector<geom::LightVolume> lights(1);
-  lights[0].light[0] = 2, lights[0].light[1] = 3, lights[0].light[2] = 1, lights[0].light[3] = 1;
+  const double point[4] = {2, 3, 1, 1};
+  std::vector<geom::Light> lights = {geom::light_from_homogeneous(point)};
   lights[0].name = "point";
-  auto b = geom::bake_silhouettes(geom::positions_of(m.positions.data(), m.vertex_count()), m.indices.data(),
-                                  m.triangle_count(), lights);
+  auto b = geom::run_pipeline(geom::positions_of(m.positions.data(), m.vertex_count()), m.indices.data(),
+                              m.triangle_count(), lights);
   std::printf("mesh: %zu triangles, %zu welded vertices\n%s", m.triangle_count(), b.weld.vertex_count(),
               geom::silhouette_report(b).c_str());
   std::printf("esm: %.1f%% of candidate edges emitted, %.2f bytes per emitted edge (%.2f for the records alone)\n",
