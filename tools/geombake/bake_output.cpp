@@ -5,9 +5,9 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <new>
 
+#include "cli/file.h"
 #include "geom/atomic_file.h"
 
 namespace geombake {
@@ -45,10 +45,9 @@ Written write_if_changed(const std::string& path, const std::vector<geom::BakedS
           geom::baked::detail::load_u32(bytes.data() + geom::baked::kHeaderSize + i * geom::baked::kEntrySize + 40);
   }
   if (fs::file_size(path, ec) == bytes.size() && !ec) {
-    std::ifstream f(path, std::ios::binary);
-    std::vector<unsigned char> old(bytes.size());
-    if (f.read(reinterpret_cast<char*>(old.data()), std::streamsize(old.size())) && old == bytes)
-      return Written::Unchanged;
+    std::vector<unsigned char> old;
+    std::string unread;
+    if (cli::read_file(path, old, unread) && old == bytes) return Written::Unchanged;
   }
   return geom::write_file_atomically(path, bytes.data(), bytes.size(), error) ? Written::New : Written::Failed;
 }
