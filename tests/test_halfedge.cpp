@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "archive.h"
 #include "geom/adjacency.h"
 #include "geom/halfedge.h"
 #include "geom/import.h"
