@@ -8,7 +8,7 @@
 //   state.h ................ the state struct, a caster's GL buffers, the per-frame context (Frame)
 //   casters.cpp ............ BakedView (below) -> GL buffers; the in-process bake of a scene's casters
 //   frame.cpp .............. draw_frame: state reset, casters, the technique's light passes, shading, inspection
-//   techniques.cpp ......... THE table of techniques (name, buffers it needs, its pass functions)
+//   techniques.cpp ......... THE table of techniques, from include/render/techniques.def (one row each)
 //   shadow_map.cpp ......... ssm, pcf: the depth map with slope-scaled bias, shared by every map technique
 //   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame
 //   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
@@ -20,11 +20,11 @@
 //   inspection.cpp ......... the overlay: topology problems, silhouette quads, the focus body
 //   platform.cpp ........... EGL (headless) and GLFW (window) glue, render/platform.h
 //
-// Adding a technique is one file plus one table row: write render/src/<name>.cpp
+// Adding a technique is one file plus one row: write render/src/<name>.cpp
 // with its light passes (`bool <name>_passes(Frame&)`: render what it needs, then
-// set Frame::lookup to its shaders/lookup_<name>.frag and Frame::shadow_texture),
-// declare it in state.h, add its row to kTechniques in techniques.cpp and its
-// name to the Technique enum below (the row order is the enum order).
+// set Frame::lookup to its shaders/lookup_<name>.frag and Frame::shadow_texture)
+// and add its row to render/techniques.def, which the Technique enum below, the
+// table of techniques.cpp and the declarations in state.h are generated from.
 //
 // A frame = the technique's light passes (shadow map, cube map, extended map,
 // stencil volumes...) then one shared shading pass: the technique decides lit
@@ -46,22 +46,11 @@
 
 namespace render {
 
+// One value per row of render/techniques.def, in its order.
 enum class Technique {
-  Ssm,
-  Pcf,
-  Esm,
-  Edsm,
-  Sv,
-  SvZPass,
-  SvZFail,
-  Cube,
-  Psm,
-  Lispsm,
-  Uniform,
-  EsmExact,
-  Sssm,
-  EdsmSoft,
-  PcfSoft
+#define GEOM_TECHNIQUE(Id, name, esm, volume, adjacency, map, point, soft, passes, shade) Id,
+#include "render/techniques.def"
+#undef GEOM_TECHNIQUE
 };
 
 // The names of --technique, in order; only techniques this build renders.
@@ -70,7 +59,7 @@ const char* technique_name(Technique t);
 bool parse_technique(const std::string& name, Technique& out);  // false: unknown or unavailable
 bool technique_has_map(Technique t);                            // false for the shadow volumes (no shadow-map size)
 bool technique_needs_point_light(Technique t);                  // cube: no directional light
-bool technique_is_soft(Technique t);                            // edsm-soft, pcf-soft: a light fraction (light_radius)
+bool technique_is_soft(Technique t);                            // the *-soft techniques: a light fraction (light_radius)
 
 // The silhouette buffers of one caster as the renderer takes them: borrowed
 // arrays, from an in-process bake (geom/silhouette.h) or a baked container
