@@ -33,4 +33,9 @@ void draw_adjacency(const State& s);
 // begin_edge_pass, draw_adjacency, end_edge_pass.
 void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target);
 
+// esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each
+// `texels` wide beyond its edge) with the fragment shader `frag`, MAX blended
+// into the edge map after the face's depth map (bias factor `slope`).
+bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float texels, const std::string& frag);
+
 }  // namespace render
