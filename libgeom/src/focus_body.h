@@ -1,5 +1,5 @@
 // focus_body.h (private): the convex-polytope steps of the focus body H
-// (seed 002_147d3d07b97c563e.txt, Sect. 4.1), shared by light_matrix.cpp and
+// (seed 002_147d3d07b97c563e.txt, Sect. 4.1), shared by compute_focus.cpp and
 // the benchmark, which times each step apart.
 //
 // A Polytope is a convex body as a list of convex polygons (flat vertex

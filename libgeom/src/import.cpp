@@ -16,9 +16,9 @@
 #include <fstream>
 #include <iterator>
 
-#include "archive.h"
 #include "file_kind.h"
 #include "importers.h"
+#include "uri.h"
 
 namespace geom {
 
@@ -222,7 +222,7 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
   if (colon != std::string::npos) {
     std::string archive = path.substr(0, colon + 4);
     std::string member = path.substr(colon + 5);
-    if (!detail::read_archive_member(archive, member, bytes, options.max_bytes, error)) {
+    if (!read_archive_member(archive, member, bytes, options.max_bytes, error)) {
       result.error = path + ": " + error;
       return result;
     }
@@ -233,6 +233,30 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
     return result;
   }
   return import_memory(path, bytes.data(), bytes.size(), options, directory_of(path));
+}
+
+std::vector<std::string> input_dependencies(const std::string& input) {
+  std::vector<std::string> deps = {input};
+  for (const char* ext : {".pk3:", ".zip:"}) {
+    const size_t at = input.find(ext);
+    if (at != std::string::npos) {
+      deps[0] = input.substr(0, at + 4);
+      return deps;
+    }
+  }
+  const size_t dot = input.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : input.substr(dot);
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  std::vector<unsigned char> bytes;
+  std::string error;
+  if (ext != ".gltf" || !read_whole_file(input, bytes, 0, error)) return deps;
+  const size_t slash = input.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : input.substr(0, slash + 1);
+  for (const std::string& uri : detail::gltf_buffer_uris(bytes.data(), bytes.size())) {
+    const std::string path = dir + detail::percent_decode(uri);  // as the importer reads it (uri.h)
+    if (std::find(deps.begin(), deps.end(), path) == deps.end()) deps.push_back(path);
+  }
+  return deps;
 }
 
 }  // namespace geom

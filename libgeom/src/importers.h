@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "geom/import.h"
 
@@ -27,6 +28,10 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error);
 bool import_stl(const ImportInput& in, Scene& out, std::string& error);
 bool import_bsp(const ImportInput& in, Scene& out, std::string& error);
 bool import_md3(const ImportInput& in, Scene& out, std::string& error);
+
+// The URIs of a glTF JSON's buffers that are not data: URIs, as written (none
+// if the JSON does not parse): geom/import.h input_dependencies.
+std::vector<std::string> gltf_buffer_uris(const unsigned char* data, size_t size);
 
 // draco_guard.cpp: libdraco's texture-coordinate decoders with their orientation
 // count bounded. draco_guard_refusal() returns (and clears) why the guard last

@@ -164,6 +164,8 @@ int run_focus(const std::vector<std::string>& argv) {
     o += "  \"light_kind\": " + str(geom::light_kind_name(r.light_kind)) + ",\n";
     o += "  \"psm_light_kind\": " + str(geom::light_kind_name(r.psm_light_kind)) + ",\n";
     o += std::string("  \"needs_cube_map\": ") + (r.needs_cube_map ? "true" : "false") + ",\n";
+    o += "  \"light_near\": " + num(r.light_near) + ",\n";
+    o += std::string("  \"near_floor_cut\": ") + (r.near_floor_cut ? "true" : "false") + ",\n";
     o += "  \"camera_shift\": " + num(r.camera_shift) + ",\n";
     o += "  \"psm_near\": " + num(r.psm_near) + ",\n";
     o += "  \"psm_far\": " + num(r.psm_far) + ",\n";
