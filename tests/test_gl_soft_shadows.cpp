@@ -41,7 +41,8 @@ TEST(GlSoftShadows, UmbraZeroLitOneMonotoneAcrossThePenumbra) {
     // vertical plane across the edge; beyond it, with a margin of 15%.
     const auto ground_x = [&](float px, float py) { return px + (e - px) * py / (py - ho); };
     const float dx = shadow_x - lx, dy = -hl, dn = std::sqrt(dx * dx + dy * dy);
-    const float rim_a = ground_x(lx - R * dy / dn, hl + R * dx / dn), rim_b = ground_x(lx + R * dy / dn, hl - R * dx / dn);
+    const float rim_a = ground_x(lx - R * dy / dn, hl + R * dx / dn),
+                rim_b = ground_x(lx + R * dy / dn, hl - R * dx / dn);
     const float half = std::max(std::abs(rim_a - shadow_x), std::abs(rim_b - shadow_x)) * 1.15f;
     const float view = std::max(0.5f, 1.5f * half);
     geom::Camera cam = camera({shadow_x, 10, 0}, {shadow_x, 0, 0}, float(2 * std::atan(view / 10) * 180 / M_PI), 1, 100,

@@ -3,8 +3,8 @@
 // second map of the same size (s.edge_map) drawn from the casters' edges with
 // the depth map on texture unit 1 (read without comparison).
 #pragma once
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "state.h"
 

@@ -55,8 +55,8 @@ bool edsm_soft_passes(Frame& f) {
   State& s = f.s;
   f.light_frame = light_frame(s, f.light);
   const glm::mat4 light_clip = f.light_frame.clip();
-  GLuint p = edge_program(f, light_clip, 1.5f, GL_RG32F,
-                          {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
+  GLuint p =
+      edge_program(f, light_clip, 1.5f, GL_RG32F, {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
   if (!p) return false;
   set(p, "u_matrix", light_clip);
   set(p, "u_half_width", 2.0f);  // the hard edsm's

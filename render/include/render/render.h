@@ -60,7 +60,7 @@ const char* technique_name(Technique t);
 bool parse_technique(const std::string& name, Technique& out);  // false: unknown or unavailable
 bool technique_has_map(Technique t);                            // false for the shadow volumes (no shadow-map size)
 bool technique_needs_point_light(Technique t);                  // cube: no directional light
-bool technique_is_soft(Technique t);                            // the *-soft techniques: a light fraction (light_radius)
+bool technique_is_soft(Technique t);                            // the *-soft ones: a light fraction (light_radius)
 
 // The silhouette buffers of one caster as the renderer takes them: borrowed
 // arrays, from an in-process bake (geom/silhouette.h) or a baked container
