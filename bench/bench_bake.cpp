@@ -50,10 +50,10 @@
 #include "geom/face_planes.h"
 #include "geom/import.h"
 #include "geom/pipeline.h"
-#include "geom/report.h"
 #include "geom/shadow_volume.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
+#include "peak_rss.h"  // libgeom/src
 
 namespace {
 

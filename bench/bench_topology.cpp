@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "geom/import.h"
-#include "geom/report.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
+#include "peak_rss.h"  // libgeom/src
 
 namespace {
 

@@ -11,7 +11,8 @@
 
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
-#include "geom/report.h"
+
+#include "peak_rss.h"
 
 namespace geom {
 

@@ -13,8 +13,8 @@
 #include <functional>
 
 #include "geom/bake.h"
-#include "geom/report.h"
 #include "geom/weld.h"
+#include "peak_rss.h"  // libgeom/src
 #include "scenes.h"
 
 namespace geombench {
