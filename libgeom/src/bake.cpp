@@ -93,7 +93,10 @@ bool keep_memory_across_bakes() {
 #endif
 }
 
-BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
+namespace {
+
+// `release` (may be null): the scene's triangles, freed once welded.
+BakeResult bake(const Scene& scene, Scene* release, const std::string& name, const BakeOptions& options) {
   BakeResult r;
   try {
     // The static lights: the scene's, then the caller's; as the lights section holds them.
@@ -119,9 +122,15 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
     po.release_early = true;
     po.timing = false;
     // Sections view the buffers (no copy) inside the run `kept` holds.
+    const auto free_triangles = [release](const char* stage) {
+      if (!release || std::string(stage) != "weld") return;
+      std::vector<float>().swap(release->positions);
+      std::vector<uint32_t>().swap(release->indices);
+      std::vector<TriangleSource>().swap(release->sources);
+    };
     const auto kept = std::make_shared<Pipeline>(
         run_pipeline(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                     scene.triangle_count(), lights, po));
+                     scene.triangle_count(), lights, po, free_triangles));
     Pipeline& p = *kept;
     const WeldResult& w = p.weld;
     report_of(scene, p, r.report);
@@ -204,6 +213,16 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
   return r;
 }
 
+}  // namespace
+
+BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
+  return bake(scene, nullptr, name, options);
+}
+
+BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options) {
+  return bake(scene, &scene, name, options);
+}
+
 BakeResult bake_file(const std::string& input, const std::string& output, const BakeOptions& options,
                      const ImportOptions& import_options) {
   ImportResult imported = import_file(input, import_options);
@@ -212,7 +231,8 @@ BakeResult bake_file(const std::string& input, const std::string& output, const 
     r.error = imported.error;
     return r;
   }
-  BakeResult r = bake_scene(imported.scene, input, options);
+  BakeResult r = bake_scene(std::move(imported.scene), input, options);
+  imported = ImportResult();
   if (!r.ok) return r;
   std::string error;
   if (!write_baked(output, r.sections, error)) {
