@@ -6,3 +6,5 @@ find_package(OpenMesh REQUIRED)
 target_link_libraries(${name} PRIVATE OpenMeshCore)
 target_compile_definitions(${name} PRIVATE GEOMBAKE_EXE="$<TARGET_FILE:geombake>")
 add_dependencies(${name} geombake)
+# The peers' runners, shared with bench_topology and geombench's bake table.
+target_sources(${name} PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/peers.cpp)

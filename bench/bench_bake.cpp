@@ -24,13 +24,11 @@
 //   build/bench/bench_bake [--benchmark_repetitions=5 --benchmark_report_aggregates_only=true]
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
-#include <malloc.h>
 #include <meshoptimizer.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -53,7 +51,7 @@
 #include "geom/shadow_volume.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
-#include "peak_rss.h"  // libgeom/src
+#include "peers.h"
 
 namespace {
 
@@ -355,64 +353,10 @@ size_t run_bake(const Input& in) {
 
 size_t run_meshopt(const Input& in) {
   const geom::Scene& m = in.scene;
-  std::vector<unsigned int> adj(m.indices.size() * 2);
-  meshopt_generateAdjacencyIndexBuffer(adj.data(), m.indices.data(), m.indices.size(), m.positions.data(),
-                                       m.vertex_count(), 12);
-  return adj[adj.size() / 2];
+  return geom_bench::meshopt_adjacency(m.positions.data(), m.vertex_count(), m.indices.data(), m.indices.size());
 }
 
-size_t run_openmesh(const Input& in) {
-  using TriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-  const geom::WeldResult& w = in.welded;
-  TriMesh mesh;
-  std::vector<TriMesh::VertexHandle> vh(w.vertex_count());
-  for (size_t i = 0; i < vh.size(); ++i)
-    vh[i] = mesh.add_vertex(TriMesh::Point(w.positions[3 * i], w.positions[3 * i + 1], w.positions[3 * i + 2]));
-  for (size_t f = 0; f < w.indices.size(); f += 3)
-    mesh.add_face(vh[w.indices[f]], vh[w.indices[f + 1]], vh[w.indices[f + 2]]);
-  return mesh.n_faces();
-}
-
-uint64_t resident_bytes() {
-  FILE* f = std::fopen("/proc/self/statm", "r");
-  if (!f) return 0;
-  unsigned long long size = 0, resident = 0;
-  const int got = std::fscanf(f, "%llu %llu", &size, &resident);
-  std::fclose(f);
-  return got == 2 ? resident * uint64_t(sysconf(_SC_PAGESIZE)) : 0;
-}
-
-// The extra peak resident memory of one run, in a child process (its peak
-// reset through /proc/self/clear_refs after the input exists); 0 where Linux refuses.
-double peak_extra(size_t (*op)(const Input&), const Input& in) {
-  int fd[2];
-  if (pipe(fd) != 0) return 0;
-  const pid_t pid = fork();
-  if (pid < 0) return close(fd[0]), close(fd[1]), 0;
-  if (pid == 0) {
-    close(fd[0]);
-    double extra = 0;
-    malloc_trim(0);
-    FILE* c = std::fopen("/proc/self/clear_refs", "w");
-    if (c && std::fputs("5", c) >= 0 && std::fclose(c) == 0) {
-      const uint64_t base = resident_bytes();
-      volatile size_t keep = op(in);
-      (void)keep;
-      const uint64_t peak = geom::peak_rss_bytes();
-      extra = peak > base ? double(peak - base) : 0.0;
-    }
-    ssize_t ignored = write(fd[1], &extra, sizeof extra);
-    (void)ignored;
-    _exit(0);
-  }
-  close(fd[1]);
-  double extra = 0;
-  if (read(fd[0], &extra, sizeof extra) != ssize_t(sizeof extra)) extra = 0;
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return extra;
-}
+size_t run_openmesh(const Input& in) { return geom_bench::openmesh_trimesh(in.welded); }
 
 // `geombake bake FILE -o OUT -j 1` in a child: wall seconds, CPU seconds, peak
 // RSS. The children are forked by a small process started first thing in
@@ -510,9 +454,15 @@ void library_row(benchmark::State& state, Input* in, size_t (*op)(const Input&),
   const double cpu = thread_cpu_seconds() - c0;
   state.counters["tris/s"] = benchmark::Counter(double(in->triangles()), benchmark::Counter::kIsIterationInvariantRate);
   Summary& s = summary()[in->name];
-  if (s.*peak == 0) s.*peak = peak_extra(op, *in);
+  if (s.*peak == 0) s.*peak = geom_bench::peak_extra_bytes([op, in] { return op(*in); });
   state.counters["peak B/tri"] = s.*peak / double(in->triangles());
   (s.*rate).push_back(double(in->triangles()) * double(state.iterations()) / std::max(1e-9, cpu));
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
 }
 
 void cli_row(benchmark::State& state, Input* in) {
@@ -528,15 +478,9 @@ void cli_row(benchmark::State& state, Input* in) {
     s.cli_cpu.push_back(cpu);
     s.cli_peak = std::max(s.cli_peak, peak);
   }
-  state.counters["cpu s"] = s.cli_cpu.back();
+  state.counters["cpu s"] = median(s.cli_cpu);
   state.counters["peak B/tri"] = s.cli_peak / double(in->triangles());
-  state.counters["tris/s"] = double(in->triangles()) / s.cli_wall.back();
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
+  state.counters["tris/s"] = double(in->triangles()) / median(s.cli_wall);
 }
 
 void register_table() {
@@ -560,20 +504,20 @@ void register_table() {
 
 // The ratios, from the rates of this run (CPU time), per mesh.
 void print_table() {
-  std::printf("\n%-16s %10s %9s %9s %9s %8s %8s %9s %9s %9s %8s\n", "mesh", "triangles", "bake M/s", "meshopt",
-              "openmesh", "x mo", "x om", "bake B/t", "mo B/t", "cli s", "cli B/t");
+  std::printf("\n%-16s %10s %9s %9s %9s %8s %8s %9s %9s %9s %8s %8s\n", "mesh", "triangles", "bake M/s", "meshopt",
+              "openmesh", "x mo", "x om", "bake B/t", "mo B/t", "cli s", "cli cpu", "cli B/t");
   for (auto& p : inputs()) {
     const Summary& s = summary()[p->name];
     const double n = double(p->triangles()), bake = median(s.bake), mo = median(s.meshopt), om = median(s.openmesh);
-    std::printf("%-16s %10zu %9.2f %9.2f %9.2f %8.2f %8.2f %9.0f %9.0f %9.3f %8.0f\n", p->name.c_str(), p->triangles(),
-                bake * 1e-6, mo * 1e-6, om * 1e-6, mo > 0 ? bake / mo : 0, om > 0 ? bake / om : 0, s.bake_peak / n,
-                s.meshopt_peak / n, median(s.cli_wall), s.cli_peak / n);
+    std::printf("%-16s %10zu %9.2f %9.2f %9.2f %8.2f %8.2f %9.0f %9.0f %9.3f %8.3f %8.0f\n", p->name.c_str(),
+                p->triangles(), bake * 1e-6, mo * 1e-6, om * 1e-6, mo > 0 ? bake / mo : 0, om > 0 ? bake / om : 0,
+                s.bake_peak / n, s.meshopt_peak / n, median(s.cli_wall), median(s.cli_cpu), s.cli_peak / n);
   }
   std::printf(
       "(bake M/s, meshopt, openmesh: million triangles per CPU second, median of the repetitions; x mo, x om: bake "
       "over the peer;\n"
-      " B/t: extra peak bytes per input triangle of one library call; cli s: median wall of geombake bake\n"
-      " -j 1 to %s; cli B/t: its whole peak resident set per input triangle)\n",
+      " B/t: extra peak bytes per input triangle of one library call; cli s, cli cpu: median wall and CPU seconds\n"
+      " of geombake bake -j 1 to %s; cli B/t: its whole peak resident set per input triangle)\n",
       scratch_dir().c_str());
 }
 

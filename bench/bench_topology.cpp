@@ -5,9 +5,7 @@
 // STL and OBJ from memory. Peak memory per triangle is printed before the table.
 //   build/bench/bench_topology [--benchmark_repetitions=5 --benchmark_report_aggregates_only=true]
 #include <benchmark/benchmark.h>
-#include <meshoptimizer.h>
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -17,6 +15,7 @@
 #include "geom/import.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
+#include "peers.h"
 #include "peak_rss.h"  // libgeom/src
 
 namespace {
@@ -32,8 +31,8 @@ Mesh sphere(int n) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       double u = 2 * M_PI * i / n, v = M_PI * (0.02 + 0.96 * j / n);
-      m.positions.insert(m.positions.end(), {float(std::cos(u) * std::sin(v)), float(std::cos(v)),
-                                             float(std::sin(u) * std::sin(v))});
+      m.positions.insert(m.positions.end(),
+                         {float(std::cos(u) * std::sin(v)), float(std::cos(v)), float(std::sin(u) * std::sin(v))});
     }
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
@@ -51,52 +50,47 @@ const Mesh& big() {
 void BM_Weld(benchmark::State& state) {
   const Mesh& m = big();
   for (auto _ : state) {
-    auto w = geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(),
-                        m.indices.size());
+    auto w =
+        geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(), m.indices.size());
     benchmark::DoNotOptimize(w.indices.data());
   }
-  state.counters["tris/s"] = benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris/s"] =
+      benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_WeldTopology(benchmark::State& state) {
   const Mesh& m = big();
   for (auto _ : state) {
-    auto w = geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(),
-                        m.indices.size());
+    auto w =
+        geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(), m.indices.size());
     auto t = geom::build_topology(geom::positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
                                   w.indices.size() / 3);
     benchmark::DoNotOptimize(t.edges.data());
   }
-  state.counters["tris/s"] = benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris/s"] =
+      benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_MeshoptAdjacency(benchmark::State& state) {
   const Mesh& m = big();
-  std::vector<unsigned int> adjacency(m.indices.size() * 2);
+  std::vector<unsigned int> adjacency;
   for (auto _ : state) {
-    meshopt_generateAdjacencyIndexBuffer(adjacency.data(), m.indices.data(), m.indices.size(), m.positions.data(),
-                                         m.positions.size() / 3, 12);
+    geom_bench::meshopt_adjacency(m.positions.data(), m.positions.size() / 3, m.indices.data(), m.indices.size(),
+                                  adjacency);
     benchmark::DoNotOptimize(adjacency.data());
   }
-  state.counters["tris/s"] = benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris/s"] =
+      benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_OpenMeshTriMesh(benchmark::State& state) {
   const Mesh& m = big();
-  using TriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
   // OpenMesh needs shared vertices: give it the welded indices (weld not timed).
-  auto w = geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(),
-                      m.indices.size());
-  for (auto _ : state) {
-    TriMesh mesh;
-    std::vector<TriMesh::VertexHandle> vh(w.vertex_count());
-    for (size_t i = 0; i < vh.size(); ++i)
-      vh[i] = mesh.add_vertex(TriMesh::Point(w.positions[3 * i], w.positions[3 * i + 1], w.positions[3 * i + 2]));
-    for (size_t f = 0; f < w.indices.size(); f += 3)
-      mesh.add_face(vh[w.indices[f]], vh[w.indices[f + 1]], vh[w.indices[f + 2]]);
-    benchmark::DoNotOptimize(mesh.n_faces());
-  }
-  state.counters["tris/s"] = benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
+  auto w =
+      geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(), m.indices.size());
+  for (auto _ : state) benchmark::DoNotOptimize(geom_bench::openmesh_trimesh(w));
+  state.counters["tris/s"] =
+      benchmark::Counter(double(m.indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 std::string as_binary_stl(const Mesh& m) {
@@ -133,7 +127,8 @@ void BM_ImportSTL(benchmark::State& state) {
     if (!r.ok) state.SkipWithError(r.error.c_str());
     benchmark::DoNotOptimize(r.scene.indices.data());
   }
-  state.counters["tris/s"] = benchmark::Counter(double(big().indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris/s"] =
+      benchmark::Counter(double(big().indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_ImportOBJ(benchmark::State& state) {
@@ -143,7 +138,8 @@ void BM_ImportOBJ(benchmark::State& state) {
     if (!r.ok) state.SkipWithError(r.error.c_str());
     benchmark::DoNotOptimize(r.scene.indices.data());
   }
-  state.counters["tris/s"] = benchmark::Counter(double(big().indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris/s"] =
+      benchmark::Counter(double(big().indices.size() / 3), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 BENCHMARK(BM_Weld)->Unit(benchmark::kMillisecond);
@@ -161,14 +157,14 @@ int main(int argc, char** argv) {
   const size_t tris = m.indices.size() / 3;
   uint64_t before = geom::peak_rss_bytes();
   {
-    auto w = geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(),
-                        m.indices.size());
+    auto w =
+        geom::weld(geom::positions_of(m.positions.data(), m.positions.size() / 3), m.indices.data(), m.indices.size());
     auto t = geom::build_topology(geom::positions_of(w.positions.data(), w.vertex_count()), w.indices.data(), tris);
     benchmark::DoNotOptimize(t.edges.data());
   }
   uint64_t after = geom::peak_rss_bytes();
-  std::printf("mesh: %zu triangles; weld + topology peak memory: %.1f bytes per triangle (input mesh excluded)\n",
-              tris, double(after - before) / double(tris));
+  std::printf("mesh: %zu triangles; weld + topology peak memory: %.1f bytes per triangle (input mesh excluded)\n", tris,
+              double(after - before) / double(tris));
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -1,4 +1,4 @@
-// Shared by the Quake 3 tests (test_import_bsp.cpp, test_bsp_patch.cpp,
+// Shared by the Quake 3 tests (test_import_bsp.cpp, libgeom/tests/test_bsp_patch.cpp,
 // test_import_md3.cpp, test_shadow_volume_maps.cpp): OpenArena's archives
 // (Debian packages openarena-081-maps and openarena-081-players), little-endian
 // record access, and the independent parse of a BSP's lumps, which reads them
@@ -19,8 +19,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include "archive.h"
-#include "bsp_patch.h"
 #include "geom/extrude.h"
 #include "geom/face_planes.h"
 #include "geom/import.h"
@@ -41,7 +39,7 @@ inline const std::string kPlayers = kBaseoa + "pak2-players.pk3";
 inline std::vector<unsigned char> member(const std::string& archive, const std::string& name) {
   std::vector<unsigned char> bytes;
   std::string error;
-  EXPECT_TRUE(detail::read_archive_member(archive, name, bytes, 0, error)) << error;
+  EXPECT_TRUE(read_archive_member(archive, name, bytes, 0, error)) << error;
   return bytes;
 }
 

@@ -41,8 +41,8 @@
 #include <string>
 #include <vector>
 
-#include "archive.h"
 #include "cli_run.h"
+#include "geom/import.h"
 
 namespace fs = std::filesystem;
 
@@ -378,7 +378,7 @@ TEST(BadInputSweep, TruncationsInBatch) {
   };
   std::vector<unsigned char> md3;
   std::string error;
-  if (geom::detail::read_archive_member("/usr/share/games/openarena/baseoa/pak2-players.pk3",
+  if (geom::read_archive_member("/usr/share/games/openarena/baseoa/pak2-players.pk3",
                                         "models/players/gargoyle/head_2.md3", md3, 0, error))
     sources["head_2.md3"] = std::string(md3.begin(), md3.end());
   for (const auto& [name, bytes] : sources) {

@@ -26,6 +26,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/file.h"
 #include "geom/adjacency.h"
 #include "geom/atomic_file.h"
 #include "geom/bake.h"
@@ -762,7 +763,7 @@ const std::string kDracoBox = std::string(GEOM_TEST_DATA) + "/draco/Box/glTF/Box
 std::vector<unsigned char> read_bytes(const std::string& path) {
   std::vector<unsigned char> bytes;
   std::string error;
-  EXPECT_TRUE(geom::baked::read_file(path, bytes, error)) << path << ": " << error;
+  EXPECT_TRUE(cli::read_file(path, bytes, error)) << path << ": " << error;
   return bytes;
 }
 
@@ -787,7 +788,7 @@ CliRun geombake(const std::string& dir, const std::string& args) {
   auto slurp = [](const std::string& p) {
     std::vector<unsigned char> b;
     std::string e;
-    geom::baked::read_file(p, b, e);
+    cli::read_file(p, b, e);
     ::unlink(p.c_str());
     return std::string(b.begin(), b.end());
   };

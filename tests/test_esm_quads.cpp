@@ -18,6 +18,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <vector>
 
 #include "geom/extrude.h"
 #include "silhouette_fixtures.h"
@@ -294,6 +295,38 @@ TEST(EsmQuads, TinyMeshes) {
     const V x = cross(V{v[0], v[1], v[2]}, V{d[0], d[1], d[2]});
     const double angle = std::atan2(norm(x), v[0] * d[0] + v[1] * d[1] + v[2] * d[2]);
     EXPECT_LT(angle, 0.01 * M_PI / 180);
+  }
+}
+
+// The encoding rounds as std::lround(clamp(x / s) * 32767) does, whatever
+// shortcut computes it: on the upper half (z >= 0, no fold; the fold only
+// moves x and y before the same rounding), on random directions, on
+// directions whose coordinates land on halves (k + 0.5) / 32767 and next to
+// them, and with infinite and NaN coordinates.
+TEST(EsmQuads, OctahedralEncodingRoundsAsLround) {
+  auto snorm = [](double x) { return int16_t(std::lround(std::max(-1.0, std::min(1.0, x)) * 32767.0)); };
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g;
+  std::uniform_int_distribution<int> k(-32767, 32766);
+  std::vector<std::array<double, 3>> dirs;
+  for (int i = 0; i < 20000; ++i) dirs.push_back({g(rng), g(rng), std::fabs(g(rng))});
+  for (int i = 0; i < 20000; ++i) {  // x / s = (k + 0.5) / 32767 and its neighbours
+    const double a = (k(rng) + 0.5) / 32767.0;
+    for (double t : {a, std::nextafter(a, 2.0), std::nextafter(a, -2.0)}) {
+      const double rest = 1 - std::fabs(t);
+      dirs.push_back({t, rest * 0.25, rest * 0.75});
+      dirs.push_back({rest * 0.5, t, rest * 0.5});
+    }
+  }
+  const double inf = HUGE_VAL, nan = std::nan("");
+  for (double c : {0.0, -0.0, 1.0, -1.0, inf, -inf, nan})
+    for (double d : {0.0, 1.0, inf, nan}) dirs.push_back({c, c, d}), dirs.push_back({d, c, d});
+  for (const auto& d : dirs) {
+    const double s = std::fabs(d[0]) + std::fabs(d[1]) + std::fabs(d[2]);
+    int16_t got[2];
+    geom::octahedral_encode(d.data(), got);
+    ASSERT_EQ(got[0], snorm(s > 0 ? d[0] / s : 0)) << d[0] << " " << d[1] << " " << d[2];
+    ASSERT_EQ(got[1], snorm(s > 0 ? d[1] / s : 0)) << d[0] << " " << d[1] << " " << d[2];
   }
 }
 

@@ -16,26 +16,14 @@
 #include "geom/png.h"
 #include "geom/shadow_reference.h"
 #include "gl_fixtures.h"
+#include "viewer_run.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-// Ground square, a box standing on it and a floating plate (OBJ, 1-based).
-//
-//            ____ plate (y = 1.6)
-//     ___
-//    |   |  box
-//  ==|===|========== ground y = 0
-const char* kObj =
-    "v -4 0 -4\nv -4 0 4\nv 4 0 4\nv 4 0 -4\n"
-    "f 1 2 3\nf 1 3 4\n"
-    "v -1.5 0 -0.5\nv -0.5 0 -0.5\nv -0.5 1 -0.5\nv -1.5 1 -0.5\n"
-    "v -1.5 0 0.5\nv -0.5 0 0.5\nv -0.5 1 0.5\nv -1.5 1 0.5\n"
-    "f 5 10 9\nf 5 9 6\nf 11 12 13\nf 11 13 14\nf 5 11 14\nf 5 14 10\n"
-    "f 6 9 13\nf 6 13 12\nf 10 14 13\nf 10 13 9\nf 5 6 12\nf 5 12 11\n"
-    "v 0.5 1.6 -1\nv 0.5 1.6 0.5\nv 2 1.6 0.5\nv 2 1.6 -1\n"
-    "f 13 14 15\nf 13 15 16\n";
+using viewertest::kScene;  // the geomview tests' scene (viewer_run.h)
+const char* const kObj = kScene;
 
 struct Temp {
   fs::path dir = fs::temp_directory_path() / ("geomview_cli_" + std::to_string(::getpid()));
@@ -58,46 +46,13 @@ int run(const std::string& args, std::string* output = nullptr) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::vector<float> obj_positions() {
-  std::vector<float> p;
-  std::istringstream in(kObj);
-  std::string tag;
-  while (in >> tag) {
-    if (tag == "v") {
-      float x, y, z;
-      in >> x >> y >> z;
-      p.insert(p.end(), {x, y, z});
-    } else {
-      std::string rest;
-      std::getline(in, rest);
-    }
-  }
-  return p;
-}
-
-std::vector<uint32_t> obj_indices() {
-  std::vector<uint32_t> idx;
-  std::istringstream in(kObj);
-  std::string tag;
-  while (in >> tag) {
-    if (tag == "f") {
-      uint32_t a, b, c;
-      in >> a >> b >> c;
-      idx.insert(idx.end(), {a - 1, b - 1, c - 1});
-    } else {
-      std::string rest;
-      std::getline(in, rest);
-    }
-  }
-  return idx;
-}
-
 TEST(GlCli, MaskMatchesTheReference) {
   Temp temp;
   const fs::path obj = temp.dir / "scene.obj";
   std::ofstream(obj) << kObj;
-  const std::vector<float> p = obj_positions();
-  const std::vector<uint32_t> idx = obj_indices();
+  std::vector<float> p;
+  std::vector<uint32_t> idx;
+  viewertest::parse_obj(kObj, p, idx);
   struct Case {
     std::string flags;
     geom::Light light;

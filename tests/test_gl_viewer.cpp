@@ -22,15 +22,7 @@ namespace {
 
 using namespace viewertest;
 
-// Ground, a box on it and a floating plate (OBJ).
-const char* kScene =
-    "v -4 0 -4\nv -4 0 4\nv 4 0 4\nv 4 0 -4\nf 1 2 3\nf 1 3 4\n"
-    "v -1.5 0 -0.5\nv -0.5 0 -0.5\nv -0.5 1 -0.5\nv -1.5 1 -0.5\n"
-    "v -1.5 0 0.5\nv -0.5 0 0.5\nv -0.5 1 0.5\nv -1.5 1 0.5\n"
-    "f 5 10 9\nf 5 9 6\nf 11 12 13\nf 11 13 14\nf 5 11 14\nf 5 14 10\n"
-    "f 6 9 13\nf 6 13 12\nf 10 14 13\nf 10 13 9\nf 5 6 12\nf 5 12 11\n"
-    "v 0.5 1.6 -1\nv 0.5 1.6 0.5\nv 2 1.6 0.5\nv 2 1.6 -1\nf 13 14 15\nf 13 15 16\n";
-const std::string kView = "--eye 3,4,6 --target 0,0.3,0 --up 0,1,0 --fovy 50 --near 0.1 --far 100 --light 1,5,2,1";
+const std::string kView = kSceneView;
 
 // Three quads around the edge (0,0,0)-(1,0,0), 120 degrees apart: 6 triangles,
 // 9 boundary edges, 1 non-manifold edge (3 faces), 3 manifold diagonals.
@@ -160,21 +152,7 @@ TEST(GlViewer, HudFiguresAreTheCliAndTheReference) {
   ASSERT_TRUE(geom::read_png(s / "mask.png", mask, error, 1)) << error;
   std::vector<float> p;
   std::vector<uint32_t> idx;
-  {
-    std::istringstream in(kScene);
-    std::string tag;
-    while (in >> tag) {
-      if (tag == "v") {
-        float x, y, z;
-        in >> x >> y >> z;
-        p.insert(p.end(), {x, y, z});
-      } else {
-        uint32_t a, b, c;
-        in >> a >> b >> c;
-        idx.insert(idx.end(), {a - 1, b - 1, c - 1});
-      }
-    }
-  }
+  parse_obj(kScene, p, idx);
   const geom::Camera view = gltest::camera({3, 4, 6}, {0, 0.3f, 0}, 50, 0.1f, 100, 400, 300);
   const geom::ShadowReference ref = geom::shadow_reference(geom::positions_of(p.data(), p.size() / 3), idx.data(),
                                                            idx.size(), view, gltest::point_light({1, 5, 2}));

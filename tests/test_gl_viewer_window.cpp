@@ -15,15 +15,7 @@ namespace {
 
 using namespace viewertest;
 
-const char* kScene =
-    "v -4 0 -4\nv -4 0 4\nv 4 0 4\nv 4 0 -4\nf 1 2 3\nf 1 3 4\n"
-    "v -1.5 0 -0.5\nv -0.5 0 -0.5\nv -0.5 1 -0.5\nv -1.5 1 -0.5\n"
-    "v -1.5 0 0.5\nv -0.5 0 0.5\nv -0.5 1 0.5\nv -1.5 1 0.5\n"
-    "f 5 10 9\nf 5 9 6\nf 11 12 13\nf 11 13 14\nf 5 11 14\nf 5 14 10\n"
-    "f 6 9 13\nf 6 13 12\nf 10 14 13\nf 10 13 9\nf 5 6 12\nf 5 12 11\n"
-    "v 0.5 1.6 -1\nv 0.5 1.6 0.5\nv 2 1.6 0.5\nv 2 1.6 -1\nf 13 14 15\nf 13 15 16\n";
-const std::string kView =
-    "--eye 3,4,6 --target 0,0.3,0 --up 0,1,0 --fovy 50 --near 0.1 --far 100 --light 1,5,2,1 --size 320x240";
+const std::string kView = std::string(kSceneView) + " --size 320x240";
 
 TEST(GlViewerWindow, KeysHudPanelsAndScreenshot) {
   Scratch s("window");

@@ -4,6 +4,7 @@
 #pragma once
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,43 @@
 namespace viewertest {
 
 namespace fs = std::filesystem;
+
+// The scene the geomview tests draw (OBJ, 1-based): a ground square, a box
+// standing on it and a floating plate.
+//
+//            ____ plate (y = 1.6)
+//     ___
+//    |   |  box
+//  ==|===|========== ground y = 0
+inline const char* const kScene =
+    "v -4 0 -4\nv -4 0 4\nv 4 0 4\nv 4 0 -4\nf 1 2 3\nf 1 3 4\n"
+    "v -1.5 0 -0.5\nv -0.5 0 -0.5\nv -0.5 1 -0.5\nv -1.5 1 -0.5\n"
+    "v -1.5 0 0.5\nv -0.5 0 0.5\nv -0.5 1 0.5\nv -1.5 1 0.5\n"
+    "f 5 10 9\nf 5 9 6\nf 11 12 13\nf 11 13 14\nf 5 11 14\nf 5 14 10\n"
+    "f 6 9 13\nf 6 13 12\nf 10 14 13\nf 10 13 9\nf 5 6 12\nf 5 12 11\n"
+    "v 0.5 1.6 -1\nv 0.5 1.6 0.5\nv 2 1.6 0.5\nv 2 1.6 -1\nf 13 14 15\nf 13 15 16\n";
+// Its view and point light as geomview's flags.
+inline const char* const kSceneView =
+    "--eye 3,4,6 --target 0,0.3,0 --up 0,1,0 --fovy 50 --near 0.1 --far 100 --light 1,5,2,1";
+
+// The positions and 0-based triangles of an OBJ text of `v x y z` and `f a b c` lines (other lines skipped).
+inline void parse_obj(const char* text, std::vector<float>& positions, std::vector<uint32_t>& indices) {
+  std::istringstream in(text);
+  for (std::string tag; in >> tag;) {
+    if (tag == "v") {
+      float x, y, z;
+      in >> x >> y >> z;
+      positions.insert(positions.end(), {x, y, z});
+    } else if (tag == "f") {
+      uint32_t a, b, c;
+      in >> a >> b >> c;
+      indices.insert(indices.end(), {a - 1, b - 1, c - 1});
+    } else {
+      std::string rest;
+      std::getline(in, rest);
+    }
+  }
+}
 
 struct Scratch {
   fs::path dir;

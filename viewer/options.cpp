@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/file.h"
 #include "geom/baked_reader.h"
 #include "geom/import.h"
 
@@ -23,8 +24,7 @@ namespace {
 const char* kUsage =
     "Usage: geomview [FILE] [options]   (FILE: a baked .gbake container, or a mesh or scene file baked in\n"
     "                                    process; the bundled default scene when absent)\n"
-    "  --technique NAME[,NAME..]  ssm pcf esm edsm sv sv-zpass sv-zfail cube psm lispsm uniform esm-exact sssm\n"
-    "                             edsm-soft pcf-soft, or all\n"
+    "  --technique NAME[,NAME..]  %s, or all\n"
     "  --compare NAME,NAME[,..]   a grid of 2 to 16 techniques from one camera and light, each panel labelled\n"
     "                             with technique, map size, pass time and error (or all); -o grid.png headless\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"
@@ -36,7 +36,7 @@ const char* kUsage =
     "                             400x300)\n"
     "  -o FILE.png                output (several techniques: -o DIR, one DIR/NAME.png per technique)\n"
     "  --output color|mask        mask: 8-bit grey, 255 lit, 0 shadow, 128 no geometry\n"
-    "  --light-radius R           edsm-soft, pcf-soft: the light's disc (world units; radians for a sun; default 0)\n"
+    "  --light-radius R           the *-soft techniques: the light's disc (world units; radians for a sun; default 0)\n"
     "  --frames N                 render N frames and print the time of each pass\n"
     "  --inspect                  overlay silhouette quads, topology problems, focus body, with a legend\n"
     "  --error                    measure the error against the ray-cast reference (printed; in the HUD)\n"
@@ -47,6 +47,17 @@ const char* kUsage =
     "                             %s)\n"
     "Window keys: T technique, L light type, [ ] shadow-map size, I inspection, E error, C compare grid,\n"
     "R reset camera, H panels, Esc quit; drag to orbit, right-drag or scroll to zoom.\n";
+
+// The techniques of this build (render/techniques.def), wrapped under --technique.
+std::string technique_names() {
+  std::string out, line;
+  for (render::Technique t : render::available_techniques()) {
+    const std::string name = render::technique_name(t);
+    if (!line.empty() && line.size() + 1 + name.size() > 78) out += line + "\n" + std::string(29, ' '), line.clear();
+    line += (line.empty() ? "" : " ") + name;
+  }
+  return out + line;
+}
 
 bool parse_floats(const std::string& text, float* out, int n) {
   if (!cli::parse_floats(text, n, out)) return false;
@@ -144,7 +155,7 @@ int parse_options(int argc, char** argv, Options& o) {
                                                                                  "--light-radius"});
   if (!args.error().empty()) return fail(args.error() + " (see geomview --help)"), cli::kExitUsage;
   if (args.has("--help") || args.has("-h")) {
-    std::printf(kUsage, default_shaders().c_str());
+    std::printf(kUsage, technique_names().c_str(), default_shaders().c_str());
     return 0;
   }
   if (args.positional().size() > 1) return fail("one input file at most");
@@ -205,21 +216,14 @@ int parse_options(int argc, char** argv, Options& o) {
 namespace {
 
 bool read_input(const std::string& file, std::vector<unsigned char>& baked, geom::Scene& scene, std::string& error) {
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  unsigned char magic[8] = {};
-  if (f && std::fread(magic, 1, 8, f) == 8 && std::memcmp(magic, geom::baked::kMagic, 8) == 0) {
-    std::fseek(f, 0, SEEK_END);
-    const long size = std::ftell(f);
-    std::fseek(f, 0, SEEK_SET);
-    if (size > 0) {
-      baked.resize(size_t(size));
-      if (std::fread(baked.data(), 1, baked.size(), f) != baked.size()) baked.clear();
-    }
-    std::fclose(f);
-    if (baked.empty()) return error = file + ": cannot read the baked file", false;
+  std::vector<unsigned char> magic;
+  std::string unread;
+  if (cli::read_file(file, magic, unread, 8) && magic.size() == 8 &&
+      std::memcmp(magic.data(), geom::baked::kMagic, 8) == 0) {
+    if (!cli::read_file(file, baked, unread) || baked.empty())
+      return error = file + ": cannot read the baked file", false;
     return true;
   }
-  if (f) std::fclose(f);
   geom::ImportResult imported = geom::import_file(file);
   if (!imported.ok) return error = imported.error, false;
   for (const std::string& w : imported.scene.warnings) cli::warning("%s", w.c_str());

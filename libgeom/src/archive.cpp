@@ -1,7 +1,5 @@
 // Zip (.pk3) archive access through libzip (Debian's libzip-dev): Quake 3 data
 // ships as zip archives, and a maintained library reads them better than we would.
-#include "archive.h"
-
 #include <sys/stat.h>
 #include <zip.h>
 
@@ -15,7 +13,7 @@
 #include <unordered_map>
 
 #include "geom/import.h"
-#include "importers.h"
+#include "file_read.h"
 
 namespace geom::detail {
 namespace {
@@ -103,9 +101,13 @@ std::shared_ptr<OpenArchive> cached_archive(const std::string& archive, std::str
 }
 
 }  // namespace
+}  // namespace geom::detail
+
+namespace geom {
 
 bool read_archive_member(const std::string& archive, const std::string& member, std::vector<unsigned char>& bytes,
                          uint64_t max_bytes, std::string& error) {
+  using namespace detail;
   std::shared_ptr<OpenArchive> a = cached_archive(archive, error);
   if (!a) return false;
   std::lock_guard<std::mutex> lock(a->mutex);
@@ -125,7 +127,7 @@ bool read_archive_member(const std::string& archive, const std::string& member, 
             std::to_string(max_bytes);
     return false;
   }
-  const uint64_t memory = physical_memory_bytes();
+  const uint64_t memory = detail::physical_memory_bytes();
   if (st.size > (uint64_t(1) << 32) || (memory && st.size > memory)) {
     error = "member '" + member + "' claims " + std::to_string(st.size) + " bytes";
     return false;
@@ -157,10 +159,6 @@ bool read_archive_member(const std::string& archive, const std::string& member, 
   }
   return true;
 }
-
-}  // namespace geom::detail
-
-namespace geom {
 
 bool list_archive_members(const std::string& archive, const std::string& suffix, std::vector<std::string>& names,
                           std::string& error) {

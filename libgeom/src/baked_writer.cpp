@@ -1,6 +1,12 @@
 // The baked container's writer: the layout of geom/baked_reader.h's format.
 #include "geom/baked_writer.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <new>
 
@@ -129,11 +135,12 @@ bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsi
   return true;
 }
 
-bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error,
-                 std::vector<uint32_t>* crcs) {
+namespace {
+
+// The file of write_baked as the pieces of one gathering write: header and
+// table, then each section's own buffer behind its zero padding.
+bool parts_of(const std::vector<BakedSection>& sections, Layout& l, std::vector<FilePart>& parts, std::string& error) {
   static const unsigned char kZeros[baked::kMaxAlignment] = {};
-  Layout l;
-  std::vector<FilePart> parts;
   try {
     if (!lay_out(sections, baked::kDefaultAlignment, l, error)) return false;
     parts.reserve(2 * sections.size() + 1);
@@ -148,7 +155,64 @@ bool write_baked(const std::string& path, const std::vector<BakedSection>& secti
     error = "out of memory laying out the baked file";
     return false;
   }
+  return true;
+}
+
+// Whether the regular file at `path` holds exactly the concatenated parts,
+// read in pieces (never a whole copy of either in memory).
+bool holds(const std::string& path, const std::vector<FilePart>& parts, uint64_t size) {
+  std::vector<unsigned char> buffer;
+  try {
+    buffer.resize(size_t(std::min<uint64_t>(size, uint64_t(1) << 20)) + 1);
+  } catch (const std::bad_alloc&) {
+    return false;  // then it is written
+  }
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat st {};
+  bool same = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && uint64_t(st.st_size) == size;
+  for (size_t p = 0; same && p < parts.size(); ++p) {
+    const unsigned char* want = static_cast<const unsigned char*>(parts[p].data);
+    for (size_t done = 0; same && done < parts[p].size;) {
+      const size_t n = std::min(buffer.size(), parts[p].size - done);
+      size_t got = 0;
+      while (got < n) {
+        const ssize_t r = ::read(fd, buffer.data() + got, n - got);
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) break;
+        got += size_t(r);
+      }
+      same = got == n && std::memcmp(buffer.data(), want + done, n) == 0;
+      done += n;
+    }
+  }
+  ::close(fd);
+  return same;
+}
+
+}  // namespace
+
+bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error,
+                 std::vector<uint32_t>* crcs) {
+  Layout l;
+  std::vector<FilePart> parts;
+  if (!parts_of(sections, l, parts, error)) return false;
   if (!write_file_atomically(path, parts.data(), parts.size(), error)) return false;
+  if (crcs) *crcs = std::move(l.crcs);
+  return true;
+}
+
+bool write_baked_if_changed(const std::string& path, const std::vector<BakedSection>& sections, bool& unchanged,
+                            std::string& error, std::vector<uint32_t>* crcs) {
+  unchanged = false;
+  Layout l;
+  std::vector<FilePart> parts;
+  if (!parts_of(sections, l, parts, error)) return false;
+  if (holds(path, parts, l.end)) {
+    unchanged = true;
+  } else if (!write_file_atomically(path, parts.data(), parts.size(), error)) {
+    return false;
+  }
   if (crcs) *crcs = std::move(l.crcs);
   return true;
 }

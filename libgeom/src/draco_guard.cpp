@@ -21,7 +21,7 @@
 // the program's (the program exports them: the linker puts into the dynamic
 // symbol table every symbol a linked shared library also defines). Linked
 // statically, libdraco.a's weak copies give way to these strong ones. Either way
-// the decoder libdraco runs is this one. tests/test_draco_guard.cpp checks that
+// the decoder libdraco runs is this one. libgeom/tests/test_draco_guard.cpp checks that
 // dlsym resolves the symbols here, that the replacements decode real streams
 // right and that absurd counts are refused within a second, so a libdraco that
 // binds its own copies (built with -Bsymbolic, say) fails the tests instead of

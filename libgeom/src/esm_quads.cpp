@@ -6,24 +6,24 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vec3.h"
+
 namespace geom {
 namespace {
 
-struct V3 {
-  double x, y, z;
-};
-inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-inline double length(V3 a) { return std::sqrt(dot(a, a)); }
-inline V3 normalize(V3 a) {
-  const double l = length(a);
-  return l > 0 ? a * (1.0 / l) : V3{0, 0, 1};
-}
+using namespace vec3;
+// A unit vector along a; +z for the zero vector.
+inline Vec3 unit(Vec3 a) { return normalize_or(a, Vec3{0, 0, 1}); }
 
-inline int16_t snorm16(double v) { return int16_t(std::lround(std::max(-1.0, std::min(1.0, v)) * 32767.0)); }
+// std::lround(clamp(v) * 32767), inline (lround is a library call, 5% of a
+// small mesh's bake): the truncation toward zero is exact at these sizes, so
+// is the remainder, and halves go away from zero as lround's do.
+inline int16_t snorm16(double v) {
+  const double x = std::max(-1.0, std::min(1.0, v)) * 32767.0;
+  const int t = int(x);
+  const double r = x - double(t);
+  return int16_t(t + (r >= 0.5 ? 1 : r <= -0.5 ? -1 : 0));
+}
 
 }  // namespace
 
@@ -72,10 +72,10 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   };
   auto pos = [&](uint32_t v) {
     const Float3& p = positions[v];
-    return V3{double(p.x) - fp.origin[0], double(p.y) - fp.origin[1], double(p.z) - fp.origin[2]};
+    return Vec3{double(p.x) - fp.origin[0], double(p.y) - fp.origin[1], double(p.z) - fp.origin[2]};
   };
-  auto normal = [&](uint32_t f) { return V3{fp.normals[3 * f], fp.normals[3 * f + 1], fp.normals[3 * f + 2]}; };
-  auto emit = [&](V3 p0, V3 p1, uint32_t pa, uint32_t pb, V3 q) {
+  auto normal = [&](uint32_t f) { return Vec3{fp.normals[3 * f], fp.normals[3 * f + 1], fp.normals[3 * f + 2]}; };
+  auto emit = [&](Vec3 p0, Vec3 p1, uint32_t pa, uint32_t pb, Vec3 q) {
     EsmQuad e;
     e.p0[0] = float(p0.x), e.p0[1] = float(p0.y), e.p0[2] = float(p0.z);
     e.p1[0] = float(p1.x), e.p1[1] = float(p1.y), e.p1[2] = float(p1.z);
@@ -108,7 +108,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
     }
     if (live.empty()) continue;
     ++st.candidate_edges;
-    const V3 v0 = pos(e.v0), v1 = pos(e.v1);
+    const Vec3 v0 = pos(e.v0), v1 = pos(e.v1);
     const size_t before = r.quads.size();
     if (live.size() == 2) {
       // A pair: manifold (opposite directions) or inconsistent (B flipped).
@@ -120,8 +120,8 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         ++st.skipped_coplanar;
         continue;
       }
-      const V3 p0 = (ea & 1u) ? v1 : v0, p1 = (ea & 1u) ? v0 : v1;  // A traverses p0 -> p1
-      const V3 na = normal(fa), nb = normal(fb) * (inconsistent ? -1.0 : 1.0);
+      const Vec3 p0 = (ea & 1u) ? v1 : v0, p1 = (ea & 1u) ? v0 : v1;  // A traverses p0 -> p1
+      const Vec3 na = normal(fa), nb = normal(fb) * (inconsistent ? -1.0 : 1.0);
       const uint32_t* w = indices + 3 * size_t(fb);
       const uint32_t far = w[0] != e.v0 && w[0] != e.v1 ? w[0] : w[1] != e.v0 && w[1] != e.v1 ? w[1] : w[2];
       const bool concave = dot(na, pos(far) - p0) > 0;
@@ -131,16 +131,16 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
       }
       const uint32_t pa = plane_of(fa), pb = plane_of(fb) | (inconsistent ? EsmQuad::kFlip : 0u);
       if (dot(na, nb) >= bevel_dot) {
-        emit(p0, p1, pa, pb, normalize(na + nb));
+        emit(p0, p1, pa, pb, unit(na + nb));
       } else {
         // Bevel plane: the normalized sum of the two planes, through the edge.
-        V3 s = na + nb;
-        const V3 nbev = length(s) > 1e-6 ? normalize(s) : normalize(cross(p1 - p0, na));
-        const V3 mid = (p0 + p1) * 0.5;
+        Vec3 s = na + nb;
+        const Vec3 nbev = length(s) > 1e-6 ? unit(s) : unit(cross(p1 - p0, na));
+        const Vec3 mid = (p0 + p1) * 0.5;
         const uint32_t pbev = uint32_t(r.planes.size() / 4);
         r.planes.insert(r.planes.end(), {float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid))});
-        emit(p0, p1, pa, pbev, normalize(na + nbev));
-        emit(p0, p1, pbev, pb, normalize(nbev + nb));
+        emit(p0, p1, pa, pbev, unit(na + nbev));
+        emit(p0, p1, pbev, pb, unit(nbev + nb));
         ++st.bevel_edges;
       }
     } else {
@@ -150,13 +150,13 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
       // from it: two quads, exactly one open for any light off the planes.
       for (uint32_t ef : live) {
         const uint32_t f = ef >> 1;
-        const V3 p0 = (ef & 1u) ? v1 : v0, p1 = (ef & 1u) ? v0 : v1;
-        const V3 n = normal(f), u = normalize(cross(p1 - p0, n));
+        const Vec3 p0 = (ef & 1u) ? v1 : v0, p1 = (ef & 1u) ? v0 : v1;
+        const Vec3 n = normal(f), u = unit(cross(p1 - p0, n));
         const uint32_t pa = plane_of(f), pbev = uint32_t(r.planes.size() / 4);
-        const V3 mid = (p0 + p1) * 0.5;
+        const Vec3 mid = (p0 + p1) * 0.5;
         r.planes.insert(r.planes.end(), {float(u.x), float(u.y), float(u.z), float(-dot(u, mid))});
-        emit(p0, p1, pa, pbev, normalize(n + u));
-        emit(p0, p1, pbev, pa | EsmQuad::kFlip, normalize(u - n));
+        emit(p0, p1, pa, pbev, unit(n + u));
+        emit(p0, p1, pbev, pa | EsmQuad::kFlip, unit(u - n));
         ++st.bevel_edges;
       }
     }

@@ -1,5 +1,6 @@
 // focus_math.h (private): the small double-precision vector, plane and 4x4
-// matrix helpers shared by focus_body.cpp, light_matrix.cpp and cube_faces.cpp.
+// matrix helpers shared by the focus files (focus_body, focus_frame, light_matrix,
+// compute_focus) and cube_faces.cpp.
 // Matrices are column-major (m[col*4 + row]), as in geom/focus.h.
 #pragma once
 #include <cmath>

@@ -1,5 +1,6 @@
 // Half-edge summary (geom/halfedge.h): from the edge table where every vertex
-// is a single fan, else through OpenMesh. OpenMesh types stay in this file.
+// is a single fan; else OpenMesh's add_face replayed on the edge table (below);
+// OpenMesh itself only in the reference function. OpenMesh types stay in this file.
 //
 // Why the table suffices there: OpenMesh's add_face refuses a face only at a
 // complex edge (the edge already has a face on that side: an inconsistent or
@@ -14,6 +15,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Utils/Property.hh>
+#include <algorithm>
 #include <mutex>
 #include <vector>
 
@@ -115,6 +117,141 @@ bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_c
   return true;
 }
 
+// OpenMesh's PolyConnectivity::add_face (OpenMesh 9), step for step, on the
+// half-edges of the edge table: half-edge 2e runs edge e's v0 -> v1, 2e + 1
+// back; an edge exists once a face added it. What OpenMesh finds by walking
+// round a vertex (find_halfedge's search of its outgoing half-edges, the free
+// gap of "patch re-linking", adjust_outgoing_halfedge's search for a boundary
+// half-edge) is read here from each fan's two ends: every fan of faces round a
+// vertex that is not closed starts with a boundary half-edge leaving the
+// vertex and ends with one entering it, and the walks go from one end of a
+// fan to the other. So each face costs a constant, whatever the valences, and
+// the next / prev links, the vertices' half-edges and the refusals are
+// OpenMesh's own (tests/test_halfedge.cpp holds them equal on every mesh).
+HalfedgeSummary replay_add_face(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                                const Topology& t) {
+  const size_t vertex_count = positions.size();
+  constexpr uint32_t kNone = Topology::kNone;
+  const size_t hn = 2 * t.edges.size();
+  std::vector<uint32_t> next(hn, kNone), prev(hn, kNone);
+  // fan_end[h]: for h leaving a vertex, boundary, the start of a fan there:
+  // the fan's boundary half-edge entering the vertex; fan_start[h]: the reverse.
+  std::vector<uint32_t> fan_end(hn, kNone), fan_start(hn, kNone);
+  std::vector<uint8_t> face(hn, 0), exists(t.edges.size(), 0);
+  std::vector<uint32_t> out(vertex_count, kNone);  // OpenMesh's halfedge_handle(vertex)
+  HalfedgeSummary s;
+  uint64_t steps = 0;
+  auto boundary_vertex = [&](uint32_t v) { return out[v] == kNone || !face[out[v]]; };
+  // A link the replay needs and does not have would mean the fans' ends went
+  // wrong: never seen (the tests replay every mesh they have), but then
+  // OpenMesh itself answers rather than anything being read out of bounds.
+  auto lost = [&](uint32_t h) { return h >= hn; };
+  for (size_t f = 0; f < triangle_count; ++f) {
+    const uint32_t* v = indices + 3 * f;
+    if (t.face_flags[f] & kFaceCollapsed) {
+      ++s.skipped_faces;
+      continue;
+    }
+    ++steps;
+    uint32_t he[3];
+    bool fresh[3], ok = true;
+    for (int i = 0; i < 3 && ok; ++i) {
+      const uint32_t e = t.face_edges[3 * f + i];
+      he[i] = 2 * e + (v[i] == t.edges[e].v1 ? 1u : 0u);
+      fresh[i] = !exists[e];
+      ok = boundary_vertex(v[i]) && (fresh[i] || !face[he[i]]);  // complex vertex, complex edge
+    }
+    std::pair<uint32_t, uint32_t> cache[18];
+    int cached = 0;
+    for (int i = 0; i < 3 && ok; ++i) {  // re-link patches
+      const int ii = (i + 1) % 3;
+      if (fresh[i] || fresh[ii] || next[he[i]] == he[ii]) continue;
+      const uint32_t inner_prev = he[i], inner_next = he[ii];
+      const uint32_t boundary_prev = fan_end[inner_next];  // the free gap: after inner_next's fan
+      if (lost(boundary_prev) || lost(next[boundary_prev]) || lost(next[inner_prev]) || lost(prev[inner_next]))
+        return summarize_halfedges(positions, indices, triangle_count);
+      if (boundary_prev == inner_prev) {
+        ok = false;  // "patch re-linking failed": the face would close a fan beside others
+        break;
+      }
+      cache[cached++] = {boundary_prev, next[inner_prev]};
+      cache[cached++] = {prev[inner_next], next[boundary_prev]};
+      cache[cached++] = {inner_prev, inner_next};
+    }
+    if (!ok) {
+      ++s.refused_faces;
+      continue;
+    }
+    ++s.added_faces;
+    for (int i = 0; i < 3; ++i) exists[he[i] >> 1] = 1;
+    uint32_t adjust_to[3] = {kNone, kNone, kNone};  // per corner: the fan end whose next becomes the vertex's
+    bool adjust[3] = {false, false, false};
+    for (int i = 0; i < 3; ++i) {  // set up the half-edges, corner ii
+      const int ii = (i + 1) % 3;
+      const uint32_t vh = v[ii], inner_prev = he[i], inner_next = he[ii];
+      const uint32_t outer_prev = inner_next ^ 1u, outer_next = inner_prev ^ 1u;
+      const int id = (fresh[i] ? 1 : 0) | (fresh[ii] ? 2 : 0);
+      const uint32_t needed = id == 1   ? std::max(prev[inner_next], fan_end[inner_next])
+                              : id == 2 ? std::max(next[inner_prev], fan_start[inner_prev])
+                              : id == 3 ? (out[vh] == kNone ? 0 : prev[out[vh]])
+                                        : std::max(fan_start[inner_prev], fan_end[inner_next]);
+      if (lost(needed)) return summarize_halfedges(positions, indices, triangle_count);
+      if (id == 1) {  // prev new, next old: the face starts inner_next's fan anew
+        cache[cached++] = {prev[inner_next], outer_next};
+        out[vh] = outer_next;
+        const uint32_t in = fan_end[inner_next];
+        fan_end[outer_next] = in, fan_start[in] = outer_next;
+      } else if (id == 2) {  // next new, prev old: the face ends inner_prev's fan anew
+        cache[cached++] = {outer_prev, next[inner_prev]};
+        out[vh] = next[inner_prev];
+        const uint32_t start = fan_start[inner_prev];
+        fan_start[outer_prev] = start, fan_end[start] = outer_prev;
+      } else if (id == 3) {  // both new: a fan of its own, before the vertex's half-edge's
+        if (out[vh] == kNone) {
+          out[vh] = outer_next;
+          cache[cached++] = {outer_prev, outer_next};
+        } else {
+          cache[cached++] = {prev[out[vh]], outer_next};
+          cache[cached++] = {outer_prev, out[vh]};
+        }
+        fan_end[outer_next] = outer_prev, fan_start[outer_prev] = outer_next;
+      } else {  // both old: the face joins two fans (or closes one)
+        adjust[ii] = out[vh] == inner_next;
+        const uint32_t start = fan_start[inner_prev], end = fan_end[inner_next];
+        if (start != inner_next) {
+          fan_end[start] = end, fan_start[end] = start;
+          adjust_to[ii] = end;
+        }
+      }
+      if (id) cache[cached++] = {inner_prev, inner_next};
+      face[inner_prev] = 1;
+    }
+    for (int i = 0; i < cached; ++i) {
+      next[cache[i].first] = cache[i].second;
+      prev[cache[i].second] = cache[i].first;
+    }
+    // adjust_outgoing_halfedge: round the vertex from inner_next, through its
+    // fan, to the first boundary half-edge: the one after the fan's end; none
+    // when the fan closed.
+    for (int i = 0; i < 3; ++i)
+      if (adjust[i] && adjust_to[i] != kNone) out[v[i]] = next[adjust_to[i]];
+  }
+  // The holes: the cycles of next among the boundary half-edges, as OpenMesh walks them.
+  std::vector<uint8_t> visited(hn, 0);
+  for (uint32_t h = 0; h < hn; ++h) {
+    if (!exists[h >> 1] || face[h] || visited[h]) continue;
+    ++s.boundary_loops;
+    uint32_t g = h;
+    do {
+      visited[g] = 1;
+      g = next[g];
+      ++steps;
+    } while (g != h && g != kNone && !visited[g]);
+  }
+  detail::count_work(steps + hn);
+  return s;
+}
+
 }  // namespace
 
 bool halfedges_from_edge_table(const uint32_t* indices, size_t triangle_count, size_t vertex_count,
@@ -126,7 +263,7 @@ bool halfedges_from_edge_table(const uint32_t* indices, size_t triangle_count, s
 HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                     const Topology& t) {
   if (!halfedges_from_edge_table(indices, triangle_count, positions.size(), t))
-    return summarize_halfedges(positions, indices, triangle_count);
+    return replay_add_face(positions, indices, triangle_count, t);
   HalfedgeSummary s;
   s.skipped_faces = t.stats.collapsed_triangles;
   s.added_faces = triangle_count - s.skipped_faces;

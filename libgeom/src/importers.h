@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "geom/import.h"
 
@@ -28,16 +29,16 @@ bool import_stl(const ImportInput& in, Scene& out, std::string& error);
 bool import_bsp(const ImportInput& in, Scene& out, std::string& error);
 bool import_md3(const ImportInput& in, Scene& out, std::string& error);
 
+// The URIs of a glTF JSON's buffers that are not data: URIs, as written (none
+// if the JSON does not parse): geom/import.h input_dependencies.
+std::vector<std::string> gltf_buffer_uris(const unsigned char* data, size_t size);
+
 // draco_guard.cpp: libdraco's texture-coordinate decoders with their orientation
 // count bounded. draco_guard_refusal() returns (and clears) why the guard last
 // refused on this thread, "" if it did not; draco_guard_checks(i) counts the counts
 // checked by instantiation i: 0 portable / 1 deprecated scheme on the position
 // corner table, 2 / 3 on an attribute corner table.
 std::string draco_guard_refusal();
-
-// This machine's physical memory in bytes (0 if unknown): no input or archive
-// member larger than it is read.
-uint64_t physical_memory_bytes();
 uint64_t draco_guard_checks(int which);
 
 }  // namespace geom::detail

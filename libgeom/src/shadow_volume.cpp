@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vec3.h"
+
 namespace geom {
 namespace {
 
@@ -152,37 +154,30 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
 
 namespace {
 
-struct D3 {
-  double x, y, z;
-};
-inline D3 sub(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-inline double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline D3 d3(const float p[3]) { return {p[0], p[1], p[2]}; }
+using namespace vec3;
 
 // Distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
-double point_triangle_distance(D3 p, D3 a, D3 b, D3 c) {
-  auto len = [](D3 v) { return std::sqrt(dot(v, v)); };
-  auto lerp = [](D3 a, D3 d, double t) { return D3{a.x + d.x * t, a.y + d.y * t, a.z + d.z * t}; };
-  const D3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+double point_triangle_distance(Vec3 p, Vec3 a, Vec3 b, Vec3 c) {
+  auto lerp = [](Vec3 a, Vec3 d, double t) { return Vec3{a.x + d.x * t, a.y + d.y * t, a.z + d.z * t}; };
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return len(ap);
-  const D3 bp = sub(p, b);
+  if (d1 <= 0 && d2 <= 0) return length(ap);
+  const Vec3 bp = p - b;
   const double d3v = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3v >= 0 && d4 <= d3v) return len(bp);
+  if (d3v >= 0 && d4 <= d3v) return length(bp);
   const double vc = d1 * d4 - d3v * d2;
-  if (vc <= 0 && d1 >= 0 && d3v <= 0) return len(sub(p, lerp(a, ab, d1 / (d1 - d3v))));
-  const D3 cp = sub(p, c);
+  if (vc <= 0 && d1 >= 0 && d3v <= 0) return length(p - lerp(a, ab, d1 / (d1 - d3v)));
+  const Vec3 cp = p - c;
   const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return len(cp);
+  if (d6 >= 0 && d5 <= d6) return length(cp);
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return len(sub(p, lerp(a, ac, d2 / (d2 - d6))));
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return length(p - lerp(a, ac, d2 / (d2 - d6)));
   const double va = d3v * d6 - d5 * d4;
   if (va <= 0 && (d4 - d3v) >= 0 && (d5 - d6) >= 0)
-    return len(sub(p, lerp(b, sub(c, b), (d4 - d3v) / ((d4 - d3v) + (d5 - d6)))));
+    return length(p - lerp(b, c - b, (d4 - d3v) / ((d4 - d3v) + (d5 - d6))));
   const double den = 1 / (va + vb + vc);
-  const D3 q = lerp(lerp(a, ab, vb * den), ac, vc * den);
-  return len(sub(p, q));
+  const Vec3 q = lerp(lerp(a, ab, vb * den), ac, vc * den);
+  return length(p - q);
 }
 
 // Is the light inside the solid bounded by a closed component's faces?
@@ -190,7 +185,7 @@ double point_triangle_distance(D3 p, D3 a, D3 b, D3 c) {
 int light_inside(const std::vector<const SvCap*>& faces, const float light[4]) {
   double volume = 0, lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (const SvCap* c : faces) {
-    const D3 a = d3(c->a), b = d3(c->b), cc = d3(c->c);
+    const Vec3 a = of(c->a), b = of(c->b), cc = of(c->c);
     volume += dot(a, cross(b, cc));
     for (const float* p : {c->a, c->b, c->c})
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(p[k])), hi[k] = std::max(hi[k], double(p[k]));
@@ -198,21 +193,21 @@ int light_inside(const std::vector<const SvCap*>& faces, const float light[4]) {
   if (volume == 0) return -1;
   const bool inverted = volume < 0;  // the solid is the unbounded outside (a room seen from within)
   if (light[3] == 0) return inverted ? 1 : 0;
-  const D3 L = {light[0] / double(light[3]), light[1] / double(light[3]), light[2] / double(light[3])};
+  const Vec3 L = {light[0] / double(light[3]), light[1] / double(light[3]), light[2] / double(light[3])};
   const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                                 (hi[2] - lo[2]) * (hi[2] - lo[2]));
   for (const SvCap* c : faces)
-    if (point_triangle_distance(L, d3(c->a), d3(c->b), d3(c->c)) < 1e-6 * diag) return -1;
-  static const D3 dirs[4] = {
+    if (point_triangle_distance(L, of(c->a), of(c->b), of(c->c)) < 1e-6 * diag) return -1;
+  static const Vec3 dirs[4] = {
       {0.5773, 0.5775, 0.5773}, {-0.2673, 0.8018, -0.5346}, {0.7071, -0.1, -0.7}, {-0.45, -0.62, 0.64}};
-  for (const D3& d : dirs) {
+  for (const Vec3& d : dirs) {
     int crossings = 0;
     bool grazing = false;
     for (const SvCap* c : faces) {
       // Moller-Trumbore with a margin: a hit within 1e-9 of an edge is a graze.
-      const D3 a = d3(c->a), e1 = sub(d3(c->b), a), e2 = sub(d3(c->c), a), h = cross(d, e2);
+      const Vec3 a = of(c->a), e1 = of(c->b) - a, e2 = of(c->c) - a, h = cross(d, e2);
       const double det = dot(e1, h);
-      const D3 s = sub(L, a), q = cross(s, e1);
+      const Vec3 s = L - a, q = cross(s, e1);
       const double u = dot(s, h), v = dot(d, q), t = dot(e2, q);
       if (det == 0) continue;  // the ray is parallel to the face: a graze only if it hits, see below
       const double su = u / det, sv = v / det, st = t / det;

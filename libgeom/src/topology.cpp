@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "vec3.h"
 #include "work_count.h"
 
 namespace geom {
@@ -24,12 +25,8 @@ struct HalfEdge {
   uint8_t reversed;
 };
 
-struct Vec {
-  double x, y, z;
-};
-inline Vec sub(const Float3& a, const Float3& b) { return {double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z}; }
-inline Vec cross(Vec a, Vec b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-inline double dot(Vec a, Vec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+using vec3::Vec3;
+inline Vec3 sub(const Float3& a, const Float3& b) { return vec3::of(a) - vec3::of(b); }
 
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
   while (parent[v] != v) {
@@ -124,12 +121,12 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   std::vector<HalfEdge>().swap(half);
 
   // Face normals (double precision from the float input); zero-area faces.
-  std::vector<Vec> normal(triangle_count, Vec{0, 0, 0});
+  std::vector<Vec3> normal(triangle_count, Vec3{0, 0, 0});
   for (size_t f = 0; f < triangle_count; ++f) {
     if (t.face_flags[f] & kFaceCollapsed) continue;
     const uint32_t* v = indices + 3 * f;
-    Vec n = cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
-    double len = std::sqrt(dot(n, n));
+    Vec3 n = vec3::cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
+    double len = std::sqrt(vec3::dot(n, n));
     if (!(len > 0.0)) {
       t.face_flags[f] |= kFaceZeroArea;
       ++s.zero_area_triangles;
@@ -159,8 +156,8 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     if (e.kind != EdgeKind::Manifold) continue;
     const uint32_t f0 = t.edge_faces[e.first] >> 1, f1 = t.edge_faces[e.first + 1] >> 1;
     if ((t.face_flags[f0] | t.face_flags[f1]) & kFaceZeroArea) continue;
-    const Vec n0 = normal[f0], n1 = normal[f1];
-    const double c = std::max(-1.0, std::min(1.0, dot(n0, n1)));
+    const Vec3 n0 = normal[f0], n1 = normal[f1];
+    const double c = std::max(-1.0, std::min(1.0, vec3::dot(n0, n1)));
     // The angle between the normals, only where asked for.
     const double theta = options.dihedral_angles ? std::acos(c) * 180.0 / M_PI : 0.0;
     if (c >= coplanar_cos) {
@@ -172,7 +169,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     // The far vertex of f1, against f0's plane: behind = convex.
     const uint32_t* w = indices + 3 * size_t(f1);
     uint32_t far = w[0] != e.v0 && w[0] != e.v1 ? w[0] : w[1] != e.v0 && w[1] != e.v1 ? w[1] : w[2];
-    const double side = dot(n0, sub(positions[far], positions[e.v0]));
+    const double side = vec3::dot(n0, sub(positions[far], positions[e.v0]));
     if (side < 0.0) {
       e.shape = EdgeShape::Convex;
       e.dihedral_degrees = options.dihedral_angles ? float(180.0 - theta) : 0.0f;

@@ -2,7 +2,7 @@
 // map, then a geometry shader finds the silhouette edges of each caster's
 // triangles with adjacency (geom/adjacency.h) and writes the distance to the
 // nearest one (shaders/edsm_edges.*); the lookup is shaders/lookup_edsm.frag.
-#include "state.h"
+#include "edge_pass.h"
 
 namespace render {
 
@@ -10,32 +10,12 @@ namespace {
 
 // One face: the depth map, then the edge distance map beside it.
 bool edsm_face(Frame& f, const glm::mat4& light_clip) {
-  State& s = f.s;
-  const int n = f.n;
   // Bias factor 2: the lookup compares a 2 x 2 footprint (taps one texel away).
-  if (!depth_map_pass(f, light_clip, 2.0f, false)) return false;
-  ensure_edge_map(s, n, GL_RG32F);
-  GLuint p = program(s.programs, {"edsm_edges.vert", "edsm_edges.geom", "edsm_edges.frag"}, f.error);
+  GLuint p = edge_program(f, light_clip, 2.0f, GL_RG32F, {"edsm_edges.vert", "edsm_edges.geom", "edsm_edges.frag"});
   if (!p) return false;
   set(p, "u_matrix", light_clip);
-  set(p, "u_map_size", float(n));
   set(p, "u_half_width", 2.0f);
-  set(p, "u_depth", 1);
-  f.timer.begin("edge distance map");
-  glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
-  glViewport(0, 0, n, n);
-  const float none[4] = {3.0e38f, 0, 0, 0};
-  glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, none);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  glBindTextureUnit(1, s.shadow_map.depth);
-  glBindSampler(1, depth_sampler(s));
-  glUseProgram(p);
-  for (const Caster& c : s.casters) {
-    glBindVertexArray(c.adjacency_vao);
-    glDrawElements(GL_TRIANGLES_ADJACENCY, c.adjacency_count, GL_UNSIGNED_INT, nullptr);
-  }
-  glBindSampler(1, 0);
-  f.timer.end();
+  adjacency_edge_pass(f, p, "edge distance map", EdgeTarget::Distance);
   return true;
 }
 

@@ -120,33 +120,37 @@ struct Frame {
   glm::mat4 face_clip[6];  // their light clip matrices (world)
 };
 
-// The technique table (techniques.cpp): one row per Technique, in enum order.
+// The technique table (techniques.cpp, from render/techniques.def): one row per Technique, in enum order.
 struct TechniqueRow {
   Technique id;
   const char* name;
   bool needs_esm, needs_volume, needs_adjacency;  // the caster buffers it draws
   bool has_map;
   bool needs_point_light;
+  bool soft;                       // a light fraction under a disc light
   bool (*light_passes)(Frame& f);  // the passes before shading; sets lookup and textures
   // The shading (null: one pass of the shading program); `p` is the program.
   bool (*shade)(Frame& f, GLuint p);
 };
 const TechniqueRow& technique_row(Technique t);
 
-// Light passes, one family per file.
-bool shadow_map_passes(Frame& f);  // shadow_map.cpp: ssm, pcf
-bool esm_passes(Frame& f);         // esm.cpp
-bool edsm_passes(Frame& f);        // edsm.cpp
-bool focused_passes(Frame& f);     // focused.cpp: psm, lispsm, uniform
-bool cube_passes(Frame& f);        // cube.cpp
-bool sssm_passes(Frame& f);        // sssm.cpp
-bool sssm_shade(Frame& f, GLuint p);
-bool edsm_soft_passes(Frame& f);  // soft.cpp: edsm-soft
-bool edsm_soft_shade(Frame& f, GLuint p);
-bool pcf_soft_passes(Frame& f);  // soft.cpp: pcf-soft
-bool pcf_soft_shade(Frame& f, GLuint p);
-bool volume_shade(Frame& f, GLuint p);                     // shadow_volume.cpp: sv, sv-zpass, sv-zfail
+// The light passes and shading functions the rows of render/techniques.def
+// name, one family per file (see its rows); `no_pass` (never defined) stands for
+// "none" and is the null pointer in the table.
+#define GEOM_TECHNIQUE(Id, name, esm, volume, adjacency, map, point, soft, passes, shade) \
+  bool passes(Frame& f);                                                                  \
+  bool shade(Frame& f, GLuint p);
+#include "render/techniques.def"
+#undef GEOM_TECHNIQUE
 bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
+
+// soft.cpp, shared by the soft techniques (FrameSettings::light_radius): the
+// widest penumbra's half width in texels over the scene's bounding sphere (the
+// edge quads' reach), on the scene-wide light frame or on a light clip matrix
+// of projection scale `projection` (projection_scale); soft_shade (one pass
+// with soft_light.frag's uniforms) is named in techniques.def.
+float soft_reach(const Frame& f);
+float soft_reach(const Frame& f, float projection);
 
 // Shared by the map techniques (shadow_map.cpp).
 LightFrame light_frame(const State& s, const FrameLight& light);

@@ -5,10 +5,6 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <new>
-
-#include "geom/atomic_file.h"
 
 namespace geombake {
 
@@ -30,27 +26,10 @@ Written write_if_changed(const std::string& path, const std::vector<geom::BakedS
   // A symlink there is replaced, never compared through (issue 15).
   if (force || !fs::is_regular_file(fs::symlink_status(path, ec)))
     return geom::write_baked(path, sections, error, crcs) ? Written::New : Written::Failed;
-  // An output there: lay the new one out and compare before writing.
-  std::vector<unsigned char> bytes;
-  try {
-    if (!geom::serialize_baked(sections, bytes, error)) return Written::Failed;
-  } catch (const std::bad_alloc&) {
-    error = "out of memory laying out the baked file";
-    return Written::Failed;
-  }
-  if (crcs) {  // the section table of the laid-out bytes holds them (geom/baked_reader.h)
-    crcs->assign(sections.size(), 0);
-    for (size_t i = 0; i < sections.size(); ++i)
-      (*crcs)[i] =
-          geom::baked::detail::load_u32(bytes.data() + geom::baked::kHeaderSize + i * geom::baked::kEntrySize + 40);
-  }
-  if (fs::file_size(path, ec) == bytes.size() && !ec) {
-    std::ifstream f(path, std::ios::binary);
-    std::vector<unsigned char> old(bytes.size());
-    if (f.read(reinterpret_cast<char*>(old.data()), std::streamsize(old.size())) && old == bytes)
-      return Written::Unchanged;
-  }
-  return geom::write_file_atomically(path, bytes.data(), bytes.size(), error) ? Written::New : Written::Failed;
+  // An output there: compared with what would be written, piece by piece.
+  bool unchanged = false;
+  if (!geom::write_baked_if_changed(path, sections, unchanged, error, crcs)) return Written::Failed;
+  return unchanged ? Written::Unchanged : Written::New;
 }
 
 int terminal_width(int fd) {

@@ -53,7 +53,6 @@
 #include "geombake/inputs.h"
 #include "geombake/names.h"
 #include "geombake/tree.h"
-#include "uri.h"
 
 namespace geombake {
 namespace {
@@ -115,31 +114,6 @@ std::string dependency_of(const std::string& input) {
     if (at != std::string::npos) return input.substr(0, at + 4);
   }
   return input;
-}
-
-// Every file an input was made from: the input (or its archive) and, for a
-// .gltf, the external buffers its JSON names (percent-decoded as the importer
-// decodes them, relative to it;
-// images are never read, so they are no dependency).
-std::vector<std::string> dependencies_of(const std::string& input) {
-  std::vector<std::string> deps = {dependency_of(input)};
-  const size_t dot = input.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : input.substr(dot);
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".gltf" || deps[0] != input) return deps;
-  std::ifstream f(input, std::ios::binary);
-  const nlohmann::json doc = nlohmann::json::parse(f, nullptr, false);
-  if (!doc.is_object() || !doc.contains("buffers") || !doc["buffers"].is_array()) return deps;
-  const size_t slash = input.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "" : input.substr(0, slash + 1);
-  for (const auto& b : doc["buffers"]) {
-    if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
-    const std::string uri = b["uri"].get<std::string>();
-    if (uri.rfind("data:", 0) == 0) continue;
-    const std::string path = dir + geom::detail::percent_decode(uri);  // as the importer reads it (uri.h)
-    if (std::find(deps.begin(), deps.end(), path) == deps.end()) deps.push_back(path);
-  }
-  return deps;
 }
 
 // What baking one triangle costs at the peak, beyond the imported scene: the
@@ -587,7 +561,8 @@ int run_bake(const std::vector<std::string>& argv) {
       std::string rule, escaped;
       bool ok = make_escape(job.output, escaped);
       rule = escaped + ":";
-      for (const std::string& d : dependencies_of(job.input)) ok = make_escape(d, escaped) && ok, rule += " " + escaped;
+      for (const std::string& d : geom::input_dependencies(job.input))
+        ok = make_escape(d, escaped) && ok, rule += " " + escaped;
       if (ok)
         depfile += rule + "\n";
       else if (args.has("--depfile"))

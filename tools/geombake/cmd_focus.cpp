@@ -11,13 +11,13 @@
 // Bad JSON, a missing key or an invalid frame: `Error: FILE: ...`, exit 1.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "cli/args.h"
+#include "cli/file.h"
 #include "geom/focus.h"
 #include "geombake/command.h"
 
@@ -79,13 +79,13 @@ int run_focus(const std::vector<std::string>& argv) {
     return 2;
   }
   const std::string& file = args.positional()[0];
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    std::fprintf(stderr, "Error: %s: cannot open\n", file.c_str());
+  std::string text, problem;
+  if (!cli::read_file(file, text, problem)) {
+    std::fprintf(stderr, "Error: %s: %s\n", file.c_str(), problem.c_str());
     return 1;
   }
   try {
-    Json frame = Json::parse(in);  // throws on bad JSON
+    Json frame = Json::parse(text);  // throws on bad JSON
     const Json& cam = member(frame, "frame", "camera");
     double eye[3], target[3], up[3];
     vec3(cam, "camera", "eye", eye);
@@ -164,6 +164,8 @@ int run_focus(const std::vector<std::string>& argv) {
     o += "  \"light_kind\": " + str(geom::light_kind_name(r.light_kind)) + ",\n";
     o += "  \"psm_light_kind\": " + str(geom::light_kind_name(r.psm_light_kind)) + ",\n";
     o += std::string("  \"needs_cube_map\": ") + (r.needs_cube_map ? "true" : "false") + ",\n";
+    o += "  \"light_near\": " + num(r.light_near) + ",\n";
+    o += std::string("  \"near_floor_cut\": ") + (r.near_floor_cut ? "true" : "false") + ",\n";
     o += "  \"camera_shift\": " + num(r.camera_shift) + ",\n";
     o += "  \"psm_near\": " + num(r.psm_near) + ",\n";
     o += "  \"psm_far\": " + num(r.psm_far) + ",\n";

@@ -1,26 +1,17 @@
 // tools/geombench/bake_throughput.cpp: see bake_throughput.h.
 #include "bake_throughput.h"
 
-#include <malloc.h>
-#include <meshoptimizer.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <chrono>
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <functional>
+#include <ctime>
 
 #include "geom/bake.h"
 #include "geom/weld.h"
-#include "peak_rss.h"  // libgeom/src
+#include "peers.h"
 #include "scenes.h"
 
 namespace geombench {
 namespace {
-
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 struct Input {
   geom::Scene raw;
@@ -31,61 +22,15 @@ struct Input {
 size_t run(const std::string& method, const Input& in) {
   const geom::Scene& m = in.raw;
   if (method == "bake") return geom::bake_scene(m, "mesh").sections.size();
-  if (method == "meshopt") {
-    std::vector<unsigned int> adj(m.indices.size() * 2);
-    meshopt_generateAdjacencyIndexBuffer(adj.data(), m.indices.data(), m.indices.size(), m.positions.data(),
-                                         m.vertex_count(), 12);
-    return adj[adj.size() / 2];
-  }
-  const geom::WeldResult& w = in.welded;
-  TriMesh mesh;
-  std::vector<TriMesh::VertexHandle> vh(w.vertex_count());
-  for (size_t i = 0; i < vh.size(); ++i)
-    vh[i] = mesh.add_vertex(TriMesh::Point(w.positions[3 * i], w.positions[3 * i + 1], w.positions[3 * i + 2]));
-  for (size_t f = 0; f < w.indices.size(); f += 3)
-    mesh.add_face(vh[w.indices[f]], vh[w.indices[f + 1]], vh[w.indices[f + 2]]);
-  return mesh.n_faces();
+  if (method == "meshopt")
+    return geom_bench::meshopt_adjacency(m.positions.data(), m.vertex_count(), m.indices.data(), m.indices.size());
+  return geom_bench::openmesh_trimesh(in.welded);
 }
 
-uint64_t current_rss() {
-  FILE* f = std::fopen("/proc/self/statm", "r");
-  if (!f) return 0;
-  unsigned long long size = 0, resident = 0;
-  const int got = std::fscanf(f, "%llu %llu", &size, &resident);
-  std::fclose(f);
-  return got == 2 ? resident * uint64_t(sysconf(_SC_PAGESIZE)) : 0;
-}
-
-// The extra peak memory of one run, measured in a child process.
-double peak_extra(const std::string& method, const Input& in) {
-  int fd[2];
-  if (pipe(fd) != 0) return 0;
-  const pid_t pid = fork();
-  if (pid < 0) return close(fd[0]), close(fd[1]), 0;
-  if (pid == 0) {
-    close(fd[0]);
-    double extra = 0;
-    malloc_trim(0);  // hand freed heap back: a reused resident block would hide the run's allocations
-    FILE* c = std::fopen("/proc/self/clear_refs", "w");
-    const bool reset = c && std::fputs("5", c) >= 0 && std::fclose(c) == 0;
-    if (reset) {
-      const uint64_t base = current_rss();
-      volatile size_t keep = run(method, in);
-      (void)keep;
-      const uint64_t peak = geom::peak_rss_bytes();
-      extra = peak > base ? double(peak - base) : 0.0;
-    }
-    ssize_t ignored = write(fd[1], &extra, sizeof extra);
-    (void)ignored;
-    _exit(0);
-  }
-  close(fd[1]);
-  double extra = 0;
-  if (read(fd[0], &extra, sizeof extra) != ssize_t(sizeof extra)) extra = 0;
-  close(fd[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return extra;
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
 }  // namespace
@@ -109,18 +54,33 @@ std::vector<BakeRow> bake_throughput(const std::vector<int>& sphere_n, int repet
     }
     in.welded = geom::weld(geom::positions_of(in.raw.positions.data(), in.raw.vertex_count()), in.raw.indices.data(),
                            in.raw.indices.size());
-    for (const char* method : {"bake", "meshopt", "openmesh"}) {
-      BakeRow r;
-      r.method = method;
-      r.triangles = in.raw.triangle_count();
-      r.peak_bytes = peak_extra(method, in);  // first: the child starts from the least reused heap
-      r.seconds = 1e30;
-      for (int k = 0; k < std::max(1, repetitions); ++k) {
-        const auto t0 = std::chrono::steady_clock::now();
-        volatile size_t keep = run(method, in);
-        (void)keep;
-        r.seconds = std::min(r.seconds, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    // The three methods in turn, repetition by repetition (a drift in the
+    // machine's speed reaches them alike); each repetition runs a method until
+    // it has spent 30 ms of this thread's CPU time: its time per call.
+    const char* methods[3] = {"bake", "meshopt", "openmesh"};
+    double peak[3];  // first: the child starts from the least reused heap
+    for (int m = 0; m < 3; ++m) peak[m] = geom_bench::peak_extra_bytes([&] { return run(methods[m], in); });
+    std::vector<double> per_call[3];
+    for (int k = 0; k < std::max(1, repetitions); ++k)
+      for (int m = 0; m < 3; ++m) {
+        const double c0 = thread_cpu_seconds();
+        double spent = 0;
+        int calls = 0;
+        do {
+          volatile size_t keep = run(methods[m], in);
+          (void)keep;
+          ++calls;
+          spent = thread_cpu_seconds() - c0;
+        } while (spent < 0.03);
+        per_call[m].push_back(spent / calls);
       }
+    for (int m = 0; m < 3; ++m) {
+      BakeRow r;
+      r.method = methods[m];
+      r.triangles = in.raw.triangle_count();
+      r.peak_bytes = peak[m];
+      std::sort(per_call[m].begin(), per_call[m].end());
+      r.seconds = per_call[m][per_call[m].size() / 2];
       r.triangles_per_second = r.seconds > 0 ? double(r.triangles) / r.seconds : 0;
       rows.push_back(r);
     }

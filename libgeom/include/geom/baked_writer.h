@@ -87,4 +87,11 @@ bool serialize_baked(const std::vector<BakedSection>& sections, std::vector<unsi
 bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error,
                  std::vector<uint32_t>* crcs = nullptr);
 
+// The same, unless the regular file at `path` already holds exactly those
+// bytes: then it is left untouched (its mtime kept) and `unchanged` is set.
+// The file is compared in pieces against the sections' own buffers, so
+// neither the new layout nor the old file is ever copied whole into memory.
+bool write_baked_if_changed(const std::string& path, const std::vector<BakedSection>& sections, bool& unchanged,
+                            std::string& error, std::vector<uint32_t>* crcs = nullptr);
+
 }  // namespace geom

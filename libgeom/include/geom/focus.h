@@ -46,6 +46,14 @@
 //     `light_axis` (from the light towards the receivers' centre), cut by its
 //     range; a spot light's is the square pyramid around its cone (half-angle
 //     clamped to 89.9 degrees) from `light_near` to its range.
+//   - The near plane of a point or spot light's map is at the nearest point
+//     that must be covered (H's nearest point along the axis: a receiver, or a
+//     caster between one and the light), with a floor for depth precision:
+//     FocusOptions::light_near, by default 1e-3 of the farthest receiver's
+//     distance along the axis. When the floor cuts something that must be
+//     covered (a light inside the scene: the casters next to it; receivers
+//     beside or behind it) the result says so (near_floor_cut); what lies
+//     beyond the floor is in the map, whatever the light's place.
 //   - Every vertex of H is mapped to w > 0 and into the unit cube; the matrix
 //     is always finite, whatever the input (non-finite or absurd input gives
 //     the identity and FocusFallback::InvalidInput).
@@ -106,6 +114,18 @@ enum class FocusFallback : uint8_t {
   InvalidInput,        // non-finite or absurd input: identity matrix
 };
 
+// Seconds spent in each stage of compute_focus, added up over the calls that
+// are given it (FocusOptions::stage_times): for a profiler, or to see where a
+// frame's microseconds go (bench/bench_focus.cpp).
+struct FocusStageTimes {
+  double setup = 0;      // inputs checked, S and L as half-spaces
+  double receivers = 0;  // R = V n S n L: plane clips of the view frustum
+  double hull = 0;       // the silhouette of R from the light (CGAL's 2D hull), or the 3D hull of R and the light
+  double clip = 0;       // S cut by the half-spaces of conv(R u {l}) and L
+  double faces = 0;      // H's faces for the output: the indexed polygons (a CGAL 3D hull when they do not close)
+  double matrix = 0;     // the light's kind, the shift, the matrix of the method
+};
+
 struct FocusOptions {
   FocusMethod method = FocusMethod::Psm;
   // PSM: the virtual camera's near plane is at least this fraction of the
@@ -124,7 +144,10 @@ struct FocusOptions {
   // Optional shadow casters: S becomes the convex hull of these points
   // intersected with the scene box (the box alone when empty).
   PositionSpan casters;
-  // Point, spot: the light's near plane; 0 = automatic (1e-3 of the scene's diagonal).
+  // Optional: each stage's time is added here (a clock read per stage).
+  FocusStageTimes* stage_times = nullptr;
+  // Point, spot: the floor of the light's near plane; 0 = automatic (1e-3 of
+  // the farthest receiver's distance along the light's axis).
   double light_near = 0;
 };
 
@@ -141,7 +164,11 @@ struct FocusResult {
   double psm_far = 0;                                 // psm: its far distance
   double lispsm_n = 0;                                // lispsm: the warp frustum's near distance (0 = no warp)
   double light_axis[3] = {0, 0, 0};                   // point, spot: the axis of the light frustum L (unit)
-  double light_near = 0;                              // point, spot: L's near distance from the light
+  double light_near = 0;                              // point, spot: the map's near plane (distance along light_axis)
+  // Point, spot: the near plane is at its floor and cut something that must be
+  // covered (casters next to a light inside the scene, or receivers beside or
+  // behind it): points nearer than light_near along light_axis are not in the map.
+  bool near_floor_cut = false;
   // H, for a wireframe: xyz per vertex (world space), and convex polygons as
   // counts + indices (counter-clockwise seen from outside).
   std::vector<double> vertices;

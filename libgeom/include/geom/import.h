@@ -45,6 +45,20 @@ bool is_supported_name(const std::string& name);
 // False with `error` set when the archive cannot be opened or read.
 bool list_archive_members(const std::string& archive, const std::string& suffix, std::vector<std::string>& names,
                           std::string& error);
+// One member of a zip archive, whole, found by its exact name or else
+// case-insensitively: what import_file reads for "ARCHIVE.pk3:member". False
+// with `error` set when the archive cannot be opened, the member is missing or
+// corrupt, or it is larger than max_bytes (0 = no limit) or this machine's memory.
+bool read_archive_member(const std::string& archive, const std::string& member, std::vector<unsigned char>& bytes,
+                         uint64_t max_bytes, std::string& error);
+
+// The files that `input` (a name as import_file takes it) is made from, for a
+// depfile: the file itself, or its archive for "ARCHIVE.pk3:member" (or
+// ".zip:"); and for a .gltf the external buffer files its JSON names, each
+// percent-decoded and joined to the input's folder as the importer reads them
+// (data: URIs are none; images are never read, so they are no dependency). An
+// unreadable or malformed .gltf lists itself only.
+std::vector<std::string> input_dependencies(const std::string& input);
 
 // Import from bytes already in memory; `name` decides the format (by extension)
 // and appears in messages. `base_dir` resolves relative URIs (glTF), may be empty.

@@ -8,22 +8,24 @@
 //   state.h ................ the state struct, a caster's GL buffers, the per-frame context (Frame)
 //   casters.cpp ............ BakedView (below) -> GL buffers; the in-process bake of a scene's casters
 //   frame.cpp .............. draw_frame: state reset, casters, the technique's light passes, shading, inspection
-//   techniques.cpp ......... THE table of techniques (name, buffers it needs, its pass functions)
+//   techniques.cpp ......... THE table of techniques, from include/render/techniques.def (one row each)
 //   shadow_map.cpp ......... ssm, pcf: the depth map with slope-scaled bias, shared by every map technique
 //   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame
 //   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
 //   esm.cpp, edsm.cpp ...... extended shadow map (seed 000), edge distance shadow map (seed 001)
+//   edge_pass.h, .cpp ...... the edge pass the silhouette maps share (esm, edsm, sssm, the edge-distance soft ones)
 //   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (seed 004)
 //   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, seed 001's baseline)
 //   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; seed 001 Sect. 6)
+//   esm_soft.cpp ........... esm-soft: the extended shadow map's distance under the disc (seed 000 Sect. 3.2)
 //   inspection.cpp ......... the overlay: topology problems, silhouette quads, the focus body
 //   platform.cpp ........... EGL (headless) and GLFW (window) glue, render/platform.h
 //
-// Adding a technique is one file plus one table row: write render/src/<name>.cpp
+// Adding a technique is one file plus one row: write render/src/<name>.cpp
 // with its light passes (`bool <name>_passes(Frame&)`: render what it needs, then
-// set Frame::lookup to its shaders/lookup_<name>.frag and Frame::shadow_texture),
-// declare it in state.h, add its row to kTechniques in techniques.cpp and its
-// name to the Technique enum below (the row order is the enum order).
+// set Frame::lookup to its shaders/lookup_<name>.frag and Frame::shadow_texture)
+// and add its row to render/techniques.def, which the Technique enum below, the
+// table of techniques.cpp and the declarations in state.h are generated from.
 //
 // A frame = the technique's light passes (shadow map, cube map, extended map,
 // stencil volumes...) then one shared shading pass: the technique decides lit
@@ -45,22 +47,11 @@
 
 namespace render {
 
+// One value per row of render/techniques.def, in its order.
 enum class Technique {
-  Ssm,
-  Pcf,
-  Esm,
-  Edsm,
-  Sv,
-  SvZPass,
-  SvZFail,
-  Cube,
-  Psm,
-  Lispsm,
-  Uniform,
-  EsmExact,
-  Sssm,
-  EdsmSoft,
-  PcfSoft
+#define GEOM_TECHNIQUE(Id, name, esm, volume, adjacency, map, point, soft, passes, shade) Id,
+#include "render/techniques.def"
+#undef GEOM_TECHNIQUE
 };
 
 // The names of --technique, in order; only techniques this build renders.
@@ -69,7 +60,7 @@ const char* technique_name(Technique t);
 bool parse_technique(const std::string& name, Technique& out);  // false: unknown or unavailable
 bool technique_has_map(Technique t);                            // false for the shadow volumes (no shadow-map size)
 bool technique_needs_point_light(Technique t);                  // cube: no directional light
-bool technique_is_soft(Technique t);                            // edsm-soft, pcf-soft: a light fraction (light_radius)
+bool technique_is_soft(Technique t);                            // the *-soft ones: a light fraction (light_radius)
 
 // The silhouette buffers of one caster as the renderer takes them: borrowed
 // arrays, from an in-process bake (geom/pipeline.h) or a baked container
@@ -125,7 +116,7 @@ struct FrameSettings {
   Output output = Output::Color;
   int shadow_map_size = 1024;
   bool inspect = false;  // overlay: silhouette quads, topology problems, focus body (colour output only)
-  // The light's radius for the soft techniques (edsm-soft, pcf-soft): a disc facing
+  // The light's radius for the soft techniques (edsm-soft, esm-soft, pcf-soft): a disc facing
   // the receiver, world units for a point or spot light, radians (its angular
   // radius) for a directional light. 0: a point light (their hard answer).
   float light_radius = 0;

@@ -3,6 +3,7 @@
 // OpenArena's real maps.
 #include <gtest/gtest.h>
 
+#include "bsp_patch.h"
 #include "quake3_fixtures.h"
 
 using namespace geom;

@@ -9,7 +9,8 @@
 //        ____                                   /\      (closed)
 //       |\  /                                  /__\     book: every triangle on
 //       | \/  ...                              \  /     one edge (a "spine")
-//                                               \/
+//                                               \/      star: many separate fans
+//                                                       at one vertex
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -56,6 +57,19 @@ geom::Scene book(int n) {  // pages alternate their winding; every tenth is a du
       s.indices.insert(s.indices.end(), {0u, 1u, p});
     else
       s.indices.insert(s.indices.end(), {1u, 0u, p});
+  }
+  return s;
+}
+
+geom::Scene star(int n) {  // n / 3 petals of three faces, fans apart at the centre until the third joins them
+  geom::Scene s;
+  s.positions = {0, 0, 0};
+  for (int p = 0; p < n / 3; ++p) {
+    const uint32_t v = uint32_t(s.positions.size() / 3);
+    for (int k = 0; k < 4; ++k)
+      s.positions.insert(s.positions.end(),
+                         {float(std::cos(0.001 * p + k)), float(std::sin(0.001 * p + k)), float(p % 7 + k)});
+    s.indices.insert(s.indices.end(), {0u, v, v + 1, 0u, v + 2, v + 3, 0u, v + 1, v + 2});
   }
   return s;
 }
@@ -113,4 +127,5 @@ void expect_linear(const char* name, geom::Scene (*make)(int)) {
 TEST(LinearWork, Fan) { expect_linear("fan", fan); }
 TEST(LinearWork, DoubleCone) { expect_linear("double cone", double_cone); }
 TEST(LinearWork, Book) { expect_linear("book", book); }
+TEST(LinearWork, Star) { expect_linear("star", star); }
 TEST(LinearWork, Sphere) { expect_linear("sphere", sphere); }

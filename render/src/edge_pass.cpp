@@ -1,0 +1,90 @@
+// edge_pass.cpp: the edge pass of the silhouette-map techniques (edge_pass.h).
+#include "edge_pass.h"
+
+namespace render {
+
+GLuint edge_program(Frame& f, const glm::mat4& light_clip, float slope, GLenum format,
+                    const std::vector<std::string>& files) {
+  if (!depth_map_pass(f, light_clip, slope, false)) return 0;
+  ensure_edge_map(f.s, f.n, format);
+  GLuint p = program(f.s.programs, files, f.error);
+  if (!p) return 0;
+  set(p, "u_map_size", float(f.n));
+  set(p, "u_depth", 1);
+  return p;
+}
+
+void begin_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target) {
+  State& s = f.s;
+  f.timer.begin(label);
+  glBindFramebuffer(GL_FRAMEBUFFER, s.edge_map.fbo);
+  glViewport(0, 0, f.n, f.n);
+  switch (target) {
+    case EdgeTarget::Distance: {
+      const float none[4] = {3.0e38f, 0, 0, 0};
+      glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, none);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      break;
+    }
+    case EdgeTarget::Silhouette: {
+      const GLuint centre[4] = {0, 0, 0, 0};  // the default point: the cell's centre; no edge depth
+      glClearNamedFramebufferuiv(s.edge_map.fbo, GL_COLOR, 0, centre);
+      glClearDepth(1.0);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      break;
+    }
+    case EdgeTarget::ExtendedMax: {
+      const float zero[4] = {0, 0, 0, 0};
+      glClearNamedFramebufferfv(s.edge_map.fbo, GL_COLOR, 0, zero);
+      glDisable(GL_DEPTH_TEST);
+      glEnable(GL_BLEND);
+      glBlendEquation(GL_MAX);  // 000 Sect. 4.1: MAX of the inverted distance and of the edge depth
+      break;
+    }
+  }
+  glBindTextureUnit(1, s.shadow_map.depth);
+  glBindSampler(1, depth_sampler(s));
+  glUseProgram(p);
+}
+
+void end_edge_pass(Frame& f, EdgeTarget target) {
+  if (target == EdgeTarget::ExtendedMax) {
+    glBlendEquation(GL_FUNC_ADD);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+  }
+  glBindSampler(1, 0);
+  f.timer.end();
+}
+
+void draw_adjacency(const State& s) {
+  for (const Caster& c : s.casters) {
+    glBindVertexArray(c.adjacency_vao);
+    glDrawElements(GL_TRIANGLES_ADJACENCY, c.adjacency_count, GL_UNSIGNED_INT, nullptr);
+  }
+}
+
+void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target) {
+  begin_edge_pass(f, p, label, target);
+  draw_adjacency(f.s);
+  end_edge_pass(f, target);
+}
+
+bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float texels, const std::string& frag) {
+  GLuint p = edge_program(f, light_clip, slope, GL_RGBA32F, {"esm_quad.vert", frag});
+  if (!p) return false;
+  set(p, "u_extrude_scale", 2.0f * texels / (float(f.n) * projection_scale(light_clip)));
+  set(p, "u_planes", 2);
+  begin_edge_pass(f, p, "extended map quads", EdgeTarget::ExtendedMax);
+  for (const Caster& c : f.s.casters) {
+    set(p, "u_light_view_proj", at(glm::dmat4(light_clip), c.origin));
+    set(p, "u_light", local_light(c, glm::dvec4(f.light.position)));
+    glBindTextureUnit(2, c.esm_planes);
+    glBindVertexArray(c.esm_vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
+  }
+  end_edge_pass(f, EdgeTarget::ExtendedMax);
+  return true;
+}
+
+}  // namespace render

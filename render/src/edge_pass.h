@@ -1,0 +1,41 @@
+// edge_pass.h (private to render/): the edge pass the silhouette-map
+// techniques share (esm, edsm, sssm, edsm-soft): after the face's depth map, a
+// second map of the same size (s.edge_map) drawn from the casters' edges with
+// the depth map on texture unit 1 (read without comparison).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "state.h"
+
+namespace render {
+
+// How the edge map starts and blends.
+enum class EdgeTarget {
+  Distance,     // edsm, edsm-soft: RG32F cleared to 3e38 ("no edge yet") and depth-tested
+  Silhouette,   // sssm: RG32UI cleared to 0 (the cell's centre) and depth-tested from 1
+  ExtendedMax,  // esm: cleared to 0, no depth test, MAX blending (seed 000, Sect. 4.1)
+};
+
+// The face's depth map (slope-scaled bias `slope`, shadow_map.cpp), the edge
+// map sized n x n in `format`, and the program of `files` with u_map_size and
+// u_depth (unit 1) set: 0 with f.error when a pass or a shader fails.
+GLuint edge_program(Frame& f, const glm::mat4& light_clip, float slope, GLenum format,
+                    const std::vector<std::string>& files);
+
+// Starts the timer `label`, makes s.edge_map the n x n target, clears it for
+// `target`, binds the depth map to unit 1 and uses `p`.
+void begin_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target);
+// Restores what begin_edge_pass changed and stops the timer.
+void end_edge_pass(Frame& f, EdgeTarget target);
+// Every caster's triangles with adjacency (geom/adjacency.h), between the two.
+void draw_adjacency(const State& s);
+// begin_edge_pass, draw_adjacency, end_edge_pass.
+void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target);
+
+// esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each
+// `texels` wide beyond its edge) with the fragment shader `frag`, MAX blended
+// into the edge map after the face's depth map (bias factor `slope`).
+bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float texels, const std::string& frag);
+
+}  // namespace render
