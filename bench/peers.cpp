@@ -9,7 +9,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <cstdio>
 
-#include "geom/report.h"
+#include "peak_rss.h"  // libgeom/src
 
 namespace geom_bench {
 

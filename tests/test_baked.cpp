@@ -719,6 +719,40 @@ TEST(Bake, Deterministic) {
   }
 }
 
+// The bake that frees the scene's triangles once welded (geombake's) gives the
+// same bytes as the one that leaves the scene alone, for every flag set and
+// with lights; the scene keeps its lights, warnings and counts.
+TEST(Bake, MovedSceneBakesTheSame) {
+  std::mt19937 rng(17);
+  for (int trial = 0; trial < 40; ++trial) {
+    geom::Scene s = trial == 0 ? seamed_tetrahedron() : random_scene(rng, trial % 2 ? 0.0f : 300.0f);
+    s.lights.resize(trial % 3);
+    for (size_t i = 0; i < s.lights.size(); ++i) s.lights[i].position[1] = 2.0 + double(i);
+    s.warnings = {"a warning"};
+    s.source_counts = {{"polygon.faces", 3}};
+    geom::BakeOptions o;
+    o.pipeline.esm = trial % 2;
+    o.pipeline.adjacency = trial % 5 != 1;
+    o.pipeline.volume = trial % 4 != 2;
+    o.lights = lights_of({{1, 2, 3, 1}});
+    if (trial % 7 == 3) o.pipeline.weld_tolerance = 0.3f;
+    const geom::BakeResult kept = geom::bake_scene(s, "scene", o);
+    geom::Scene moved = s;
+    const geom::BakeResult freed = geom::bake_scene(std::move(moved), "scene", o);
+    ASSERT_TRUE(kept.ok && freed.ok) << kept.error << freed.error;
+    std::vector<unsigned char> a, b;
+    std::string error;
+    ASSERT_TRUE(geom::serialize_baked(kept.sections, a, error) && geom::serialize_baked(freed.sections, b, error));
+    EXPECT_TRUE(same(a, b)) << "trial " << trial;
+    EXPECT_EQ(geom::report_json(kept.report), geom::report_json(freed.report));
+    EXPECT_EQ(kept.silhouette, freed.silhouette);
+    EXPECT_TRUE(moved.positions.empty() && moved.indices.empty() && moved.sources.empty()) << "trial " << trial;
+    EXPECT_EQ(moved.lights.size(), s.lights.size());
+    EXPECT_EQ(moved.warnings, s.warnings);
+    EXPECT_EQ(moved.source_counts, s.source_counts);
+  }
+}
+
 // ---- Real files, and the geombake CLI ---------------------------------------
 
 namespace {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -100,6 +101,11 @@ TEST(CmdVolume, RealFilesGiveClosedVolumes) {
     ASSERT_EQ(r.code, 0) << c.file << "\n" << r.output;
     EXPECT_NE(r.output.find("light '--light'"), std::string::npos) << r.output;
     const Obj o = read_obj(out);
+    // The header: each line of the comment a "# " line, then the vertices.
+    std::ifstream text(out);
+    const std::string obj((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(obj.rfind("# shadow volume of " + c.file + "\n# light ", 0), 0u) << obj.substr(0, 200);
+    EXPECT_EQ(obj.find("\nv "), o.header.size() - 1) << o.header;
     EXPECT_FALSE(o.f.empty()) << c.file;
     EXPECT_TRUE(closed(o)) << c.file;
     EXPECT_NE(o.header.find(c.light.substr(0, 2)), std::string::npos);

@@ -614,8 +614,6 @@ TEST(ShadowVolume, FiniteVolumeMatchesInsideBounds) {
         EXPECT_EQ(a, c) << m.name << " " << l.what;
       }
       EXPECT_GT(nonzero, 10) << m.name;
-      const std::string obj = geom::volume_obj(vm, "test\nvolume");
-      EXPECT_EQ(obj.rfind("# test\n# volume\nv ", 0), 0u);
     }
   }
 }

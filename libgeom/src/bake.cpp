@@ -4,7 +4,6 @@
 
 #include <climits>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <new>
 
@@ -12,37 +11,13 @@
 #include <malloc.h>
 #endif
 
+#include "json_write.h"
 
 namespace geom {
 namespace {
 
 using baked::Format;
 using baked::SectionType;
-
-std::string json_string(const std::string& s) {
-  std::string o = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') {
-      o += '\\';
-      o += char(c);
-    } else if (c < 0x20) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", c);
-      o += b;
-    } else {
-      o += char(c);
-    }
-  }
-  return o + "\"";
-}
-
-std::string json_number(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
-
-std::string json_uint(uint64_t v) { return std::to_string(v); }
 
 // Per triangle, its stored plane in input coordinates: d = d_local - n . origin.
 std::vector<float> world_face_planes(const FacePlanes& fp) {
@@ -84,22 +59,22 @@ BakedSection record_section(SectionType type, const char* name, const std::vecto
 }
 
 std::string esm_json(const EsmStats& s) {
-  return "{\"edges\":" + json_uint(s.edges) + ",\"candidate_edges\":" + json_uint(s.candidate_edges) +
-         ",\"emitted_edges\":" + json_uint(s.emitted_edges) + ",\"skipped_coplanar\":" + json_uint(s.skipped_coplanar) +
-         ",\"skipped_concave\":" + json_uint(s.skipped_concave) + ",\"quads\":" + json_uint(s.quads) +
-         ",\"bevel_edges\":" + json_uint(s.bevel_edges) + ",\"bytes\":" + json_uint(s.bytes) +
-         ",\"naive_bytes\":" + json_uint(s.naive_bytes) + "}";
+  return "{\"edges\":" + json::count(s.edges) + ",\"candidate_edges\":" + json::count(s.candidate_edges) +
+         ",\"emitted_edges\":" + json::count(s.emitted_edges) + ",\"skipped_coplanar\":" + json::count(s.skipped_coplanar) +
+         ",\"skipped_concave\":" + json::count(s.skipped_concave) + ",\"quads\":" + json::count(s.quads) +
+         ",\"bevel_edges\":" + json::count(s.bevel_edges) + ",\"bytes\":" + json::count(s.bytes) +
+         ",\"naive_bytes\":" + json::count(s.naive_bytes) + "}";
 }
 
 std::string volume_json(const ShadowVolumeStats& s) {
-  return "{\"edges\":" + json_uint(s.edges) + ",\"pair_edges\":" + json_uint(s.pair_edges) +
-         ",\"single_records\":" + json_uint(s.single_records) +
-         ",\"skipped_coplanar\":" + json_uint(s.skipped_coplanar) +
-         ",\"one_sided_faces\":" + json_uint(s.one_sided_faces) +
-         ",\"double_sided_faces\":" + json_uint(s.double_sided_faces) +
-         ",\"degenerate_faces\":" + json_uint(s.degenerate_faces) + ",\"sides\":" + json_uint(s.sides) +
-         ",\"caps\":" + json_uint(s.caps) + ",\"bytes\":" + json_uint(s.bytes) +
-         ",\"naive_sides\":" + json_uint(s.naive_sides) + ",\"naive_bytes\":" + json_uint(s.naive_bytes) + "}";
+  return "{\"edges\":" + json::count(s.edges) + ",\"pair_edges\":" + json::count(s.pair_edges) +
+         ",\"single_records\":" + json::count(s.single_records) +
+         ",\"skipped_coplanar\":" + json::count(s.skipped_coplanar) +
+         ",\"one_sided_faces\":" + json::count(s.one_sided_faces) +
+         ",\"double_sided_faces\":" + json::count(s.double_sided_faces) +
+         ",\"degenerate_faces\":" + json::count(s.degenerate_faces) + ",\"sides\":" + json::count(s.sides) +
+         ",\"caps\":" + json::count(s.caps) + ",\"bytes\":" + json::count(s.bytes) +
+         ",\"naive_sides\":" + json::count(s.naive_sides) + ",\"naive_bytes\":" + json::count(s.naive_bytes) + "}";
 }
 
 bool finite4(const double v[4]) {
@@ -118,7 +93,10 @@ bool keep_memory_across_bakes() {
 #endif
 }
 
-BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
+namespace {
+
+// `release` (may be null): the scene's triangles, freed once welded.
+BakeResult bake(const Scene& scene, Scene* release, const std::string& name, const BakeOptions& options) {
   BakeResult r;
   try {
     // The static lights: the scene's, then the caller's; as the lights section holds them.
@@ -144,9 +122,15 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
     po.release_early = true;
     po.timing = false;
     // Sections view the buffers (no copy) inside the run `kept` holds.
+    const auto free_triangles = [release](const char* stage) {
+      if (!release || std::string(stage) != "weld") return;
+      std::vector<float>().swap(release->positions);
+      std::vector<uint32_t>().swap(release->indices);
+      std::vector<TriangleSource>().swap(release->sources);
+    };
     const auto kept = std::make_shared<Pipeline>(
         run_pipeline(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                     scene.triangle_count(), lights, po));
+                     scene.triangle_count(), lights, po, free_triangles));
     Pipeline& p = *kept;
     const WeldResult& w = p.weld;
     report_of(scene, p, r.report);
@@ -177,7 +161,7 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
     if (asked.esm || asked.volume || !lights.empty()) {  // the buffers in the local frame
       std::vector<double> origin(p.planes.origin, p.planes.origin + 3);
       s.push_back(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
-      js += "\"frame\":[" + json_number(origin[0]) + "," + json_number(origin[1]) + "," + json_number(origin[2]) + "],";
+      js += "\"frame\":[" + json::number(origin[0]) + "," + json::number(origin[1]) + "," + json::number(origin[2]) + "],";
     }
     if (asked.esm) {
       s.push_back(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept));
@@ -195,7 +179,7 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       p.volume = ShadowVolume();  // the light volumes' source, emitted by none
     }
     if (asked.adjacency) {
-      js += "\"adjacency\":{\"indices\":" + json_uint(p.adjacency.size()) + "},";
+      js += "\"adjacency\":{\"indices\":" + json::count(p.adjacency.size()) + "},";
       s.push_back(view_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", p.adjacency, kept));
     }
     if (!lights.empty()) s.push_back(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table));
@@ -207,10 +191,10 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
       s.push_back(record_section(SectionType::LightSides, "light_sides", lv.sides, kept, item));
       s.push_back(record_section(SectionType::LightCaps, "light_caps", lv.caps, kept, item));
       s.push_back(view_section(SectionType::LightPlanes, Format::F32x4, 16, "light_planes", lv.planes, kept, item));
-      js += std::string(i ? "," : "") + "{\"name\":" + json_string(lights[i].name) + ",\"light\":[" +
-            json_number(h[0]) + "," + json_number(h[1]) + "," + json_number(h[2]) + "," + json_number(h[3]) +
-            "],\"sides\":" + json_uint(lv.sides.size()) + ",\"caps\":" + json_uint(lv.caps.size()) +
-            ",\"bytes\":" + json_uint(lv.stats.bytes) + "}";
+      js += std::string(i ? "," : "") + "{\"name\":" + json::quote(lights[i].name) + ",\"light\":[" +
+            json::number(h[0]) + "," + json::number(h[1]) + "," + json::number(h[2]) + "," + json::number(h[3]) +
+            "],\"sides\":" + json::count(lv.sides.size()) + ",\"caps\":" + json::count(lv.caps.size()) +
+            ",\"bytes\":" + json::count(lv.stats.bytes) + "}";
     }
     js += "]}";
     r.silhouette = js;
@@ -229,6 +213,16 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
   return r;
 }
 
+}  // namespace
+
+BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
+  return bake(scene, nullptr, name, options);
+}
+
+BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options) {
+  return bake(scene, &scene, name, options);
+}
+
 BakeResult bake_file(const std::string& input, const std::string& output, const BakeOptions& options,
                      const ImportOptions& import_options) {
   ImportResult imported = import_file(input, import_options);
@@ -237,7 +231,8 @@ BakeResult bake_file(const std::string& input, const std::string& output, const 
     r.error = imported.error;
     return r;
   }
-  BakeResult r = bake_scene(imported.scene, input, options);
+  BakeResult r = bake_scene(std::move(imported.scene), input, options);
+  imported = ImportResult();
   if (!r.ok) return r;
   std::string error;
   if (!write_baked(output, r.sections, error)) {

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <map>
 #include <tuple>
@@ -250,29 +249,6 @@ VolumeMesh finite_volume(const ShadowVolume& v, const float light[4], const doub
     tri(3, 4, 5);
   }
   return mesh;
-}
-
-std::string volume_obj(const VolumeMesh& mesh, const std::string& comment) {
-  std::string s;
-  char line[160];
-  size_t start = 0;
-  while (start <= comment.size()) {
-    size_t end = comment.find('\n', start);
-    if (end == std::string::npos) end = comment.size();
-    s += "# " + comment.substr(start, end - start) + "\n";
-    start = end + 1;
-  }
-  for (size_t i = 0; i + 2 < mesh.positions.size(); i += 3) {
-    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", mesh.positions[i], mesh.positions[i + 1],
-                  mesh.positions[i + 2]);
-    s += line;
-  }
-  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-    std::snprintf(line, sizeof line, "f %u %u %u\n", mesh.indices[i] + 1, mesh.indices[i + 1] + 1,
-                  mesh.indices[i + 2] + 1);
-    s += line;
-  }
-  return s;
 }
 
 }  // namespace geom

@@ -11,20 +11,24 @@
 
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
-#include "geom/report.h"
+
+#include "peak_rss.h"
 
 namespace geom {
 
 Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                      const std::vector<Light>& lights, const PipelineOptions& options) {
+                      const std::vector<Light>& lights, const PipelineOptions& options,
+                      const std::function<void(const char* stage)>& after_stage) {
   using clock = std::chrono::steady_clock;
   Pipeline p;
   auto mark = clock::now();
   const auto done = [&](const char* stage) {
-    if (!options.timing) return;
-    const auto now = clock::now();
-    p.stages.push_back({stage, std::chrono::duration<double>(now - mark).count(), peak_rss_bytes()});
-    mark = now;
+    if (options.timing) {
+      const auto now = clock::now();
+      p.stages.push_back({stage, std::chrono::duration<double>(now - mark).count(), peak_rss_bytes()});
+      mark = now;
+    }
+    if (after_stage) after_stage(stage);
   };
   const size_t tc = triangle_count;
   p.weld = weld(positions, indices, 3 * tc, options.weld_tolerance);

@@ -1,4 +1,4 @@
-// The topology report (geom/report.h): analysis pipeline and its two renderings.
+// The topology report (geom/report.h): from a pipeline run, and its two renderings.
 #include "geom/report.h"
 
 #include <algorithm>
@@ -6,65 +6,11 @@
 #include <cstring>
 #include <map>
 
+#include "json_write.h"
 
 namespace geom {
-namespace {
 
-// The length of the valid UTF-8 sequence at s[i], 0 if none starts there.
-size_t utf8_length(const std::string& s, size_t i) {
-  const auto b = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
-  const unsigned char c = b(i);
-  size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
-  if (n == 0 || i + n > s.size()) return 0;
-  for (size_t k = 1; k < n; ++k)
-    if ((b(i + k) & 0xc0) != 0x80) return 0;
-  if ((n == 2 && c < 0xc2) || (n == 3 && c == 0xe0 && b(i + 1) < 0xa0) || (n == 3 && c == 0xed && b(i + 1) >= 0xa0) ||
-      (n == 4 && c == 0xf0 && b(i + 1) < 0x90) || (n == 4 && (c > 0xf4 || (c == 0xf4 && b(i + 1) >= 0x90))))
-    return 0;  // overlong, a surrogate, or over U+10FFFF
-  return n;
-}
-
-// JSON string contents for any bytes: valid UTF-8 kept, each other byte as
-// \udcXX (PEP 383's surrogateescape: lossless, and valid JSON text).
-std::string json_escape(const std::string& s) {
-  std::string out;
-  out.reserve(s.size() + 2);
-  char buf[8];
-  for (size_t i = 0; i < s.size();) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    const size_t n = utf8_length(s, i);
-    if (n == 0) {
-      std::snprintf(buf, sizeof buf, "\\udc%02x", c);
-      out += buf;
-      ++i;
-      continue;
-    }
-    if (n > 1) {
-      out.append(s, i, n);
-    } else if (c == '"') {
-      out += "\\\"";
-    } else if (c == '\\') {
-      out += "\\\\";
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (c < 0x20 || c == 0x7f) {
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += char(c);
-    }
-    i += n;
-  }
-  return out;
-}
-
-}  // namespace
-
-std::string json_quote(const std::string& s) { return "\"" + json_escape(s) + "\""; }
+std::string json_quote(const std::string& s) { return json::quote(s); }
 
 namespace {
 
@@ -88,17 +34,6 @@ std::vector<std::pair<std::string, std::vector<std::pair<std::string, uint64_t>>
 
 }  // namespace
 
-uint64_t peak_rss_bytes() {
-  FILE* f = std::fopen("/proc/self/status", "r");
-  if (!f) return 0;
-  char line[256];
-  uint64_t kb = 0;
-  while (std::fgets(line, sizeof line, f))
-    if (std::strncmp(line, "VmHWM:", 6) == 0) kb = std::strtoull(line + 6, nullptr, 10);
-  std::fclose(f);
-  return kb * 1024;
-}
-
 void analyze(const Scene& scene, const PipelineOptions& options, Report& report) {
   PipelineOptions o = options;
   o.halfedge = true;
@@ -120,8 +55,8 @@ void report_of(const Scene& scene, const Pipeline& run, Report& report) {
 
 std::string report_json(const Report& r) {
   const TopologyStats& s = r.stats;
-  std::string o = "{\"file\":\"" + json_escape(r.file) + "\"";
-  auto num = [&](const char* key, uint64_t v) { o += ",\"" + std::string(key) + "\":" + std::to_string(v); };
+  std::string o = "{\"file\":" + json::quote(r.file);
+  auto num = [&](const char* key, uint64_t v) { o += ",\"" + std::string(key) + "\":" + json::count(v); };
   num("triangles", s.triangles);
   num("vertices", s.vertices);
   num("edges", s.edges);
@@ -144,16 +79,15 @@ std::string report_json(const Report& r) {
   num("openmesh_refused_faces", r.halfedge.refused_faces);
   num("lights", r.lights);
   o += ",\"warnings\":[";
-  for (size_t i = 0; i < r.warnings.size(); ++i) o += (i ? ",\"" : "\"") + json_escape(r.warnings[i]) + "\"";
+  for (size_t i = 0; i < r.warnings.size(); ++i) o += (i ? "," : "") + json::quote(r.warnings[i]);
   o += "]";
   if (!r.source_counts.empty()) {
     o += ",\"source_faces\":{";
     auto groups = group_counts(r.source_counts);
     for (size_t g = 0; g < groups.size(); ++g) {
-      o += (g ? ",\"" : "\"") + json_escape(groups[g].first) + "\":{";
+      o += (g ? "," : "") + json::quote(groups[g].first) + ":{";
       for (size_t i = 0; i < groups[g].second.size(); ++i)
-        o += (i ? ",\"" : "\"") + json_escape(groups[g].second[i].first) +
-             "\":" + std::to_string(groups[g].second[i].second);
+        o += (i ? "," : "") + json::quote(groups[g].second[i].first) + ":" + json::count(groups[g].second[i].second);
       o += "}";
     }
     o += "}";
@@ -163,8 +97,8 @@ std::string report_json(const Report& r) {
     for (size_t i = 0; i < r.stages.size(); ++i) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%.6f", r.stages[i].seconds);
-      o += std::string(i ? "," : "") + "{\"stage\":\"" + json_escape(r.stages[i].stage) + "\",\"seconds\":" + buf +
-           ",\"peak_rss_bytes\":" + std::to_string(r.stages[i].peak_rss_bytes) + "}";
+      o += std::string(i ? "," : "") + "{\"stage\":" + json::quote(r.stages[i].stage) + ",\"seconds\":" + buf +
+           ",\"peak_rss_bytes\":" + json::count(r.stages[i].peak_rss_bytes) + "}";
     }
     o += "]";
   }

@@ -254,7 +254,7 @@ Outcome bake_unguarded(Job& job, const geom::BakeOptions& options, const geom::I
   // the importer's warnings are stored with it too, and shown with the path.
   o.warnings = imported.scene.warnings;
   for (std::string& w : imported.scene.warnings) replace_all(w, job.input, job.name);
-  o.result = geom::bake_scene(imported.scene, job.name, options);
+  o.result = geom::bake_scene(std::move(imported.scene), job.name, options);  // its triangles freed once welded
   imported = geom::ImportResult();
   if (!o.result.ok) {
     o.error = o.result.error;

@@ -14,6 +14,7 @@
 #include "geombake/fault.h"
 #include "geombake/flags.h"
 #include "geombake/inputs.h"
+#include "peak_rss.h"  // libgeom/src
 
 namespace geombake {
 namespace {

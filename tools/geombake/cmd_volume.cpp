@@ -36,6 +36,31 @@ const char* kVolumeHelp =
     "  --coplanar-degrees D, --patch-level N, --md3-frame N, --max-triangles N,\n"
     "  --allow-outside-uris  as for `geombake info`\n";
 
+// Wavefront OBJ text of a VolumeMesh (17 significant digits), each line of
+// `comment` a "# " line first.
+std::string volume_obj(const geom::VolumeMesh& mesh, const std::string& comment) {
+  std::string s;
+  char line[160];
+  size_t start = 0;
+  while (start <= comment.size()) {
+    size_t end = comment.find('\n', start);
+    if (end == std::string::npos) end = comment.size();
+    s += "# " + comment.substr(start, end - start) + "\n";
+    start = end + 1;
+  }
+  for (size_t i = 0; i + 2 < mesh.positions.size(); i += 3) {
+    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", mesh.positions[i], mesh.positions[i + 1],
+                  mesh.positions[i + 2]);
+    s += line;
+  }
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    std::snprintf(line, sizeof line, "f %u %u %u\n", mesh.indices[i] + 1, mesh.indices[i + 1] + 1,
+                  mesh.indices[i + 2] + 1);
+    s += line;
+  }
+  return s;
+}
+
 int run_volume(const std::vector<std::string>& argv) {
   constexpr unsigned kShared = kImportFlags | kPipelineFlags;
   cli::Args args(argv, with_shared_flags({"-v", "--help", "-h", "--no-caps"}, kShared, false),
@@ -123,7 +148,7 @@ int run_volume(const std::vector<std::string>& argv) {
                 input.c_str(), double(lf[0]), double(lf[1]), double(lf[2]), double(lf[3]),
                 lf[3] != 0 ? "point" : "directional", distance, mesh.indices.size() / 3, mesh.positions.size() / 3);
   std::string error;
-  if (!geom::write_file_atomically(args.get("-o"), geom::volume_obj(mesh, comment), error)) {
+  if (!geom::write_file_atomically(args.get("-o"), volume_obj(mesh, comment), error)) {
     std::fprintf(stderr, "Error: %s\n", error.c_str());
     return 1;
   }

@@ -6,7 +6,6 @@
 #include <ctime>
 
 #include "geom/bake.h"
-#include "geom/report.h"
 #include "geom/weld.h"
 #include "peers.h"
 #include "scenes.h"

@@ -92,6 +92,10 @@ bool keep_memory_across_bakes();
 
 // Bakes an imported scene; `name` is the input's name as the report shows it.
 BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options = {});
+// The same bake, the same sections, with a lower peak: the scene's
+// triangles (positions, indices, sources) are freed as soon as the weld has
+// read them. `scene` keeps its lights, warnings and counts.
+BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options = {});
 
 // Imports `input`, bakes it and writes the container to `output` atomically:
 // on any failure no output file is created (an existing one is left as it was).

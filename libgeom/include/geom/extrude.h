@@ -5,16 +5,18 @@
 // geom/shadow_volume.h and geom/esm_quads.h). Tests check the laws on it;
 // `geombake volume` writes its result as a mesh users can open.
 //
-// Lights are (x, y, z, w): w = 1 a point light at (x, y, z); w = 0 a
-// directional light lying at infinity in direction (x, y, z) (towards the
-// light; its rays travel along -(x, y, z)). Buffers live in a local frame
-// (geom/face_planes.h); to_local_light converts a light from input coordinates.
+// Lights here are the shaders' input form (u_light): float (x, y, z, w) in
+// the local frame of the buffers (geom/face_planes.h); w = 1 a point light at
+// (x, y, z), w = 0 a directional light lying at infinity in direction
+// (x, y, z) (towards the light; its rays travel along -(x, y, z)). A
+// geom::Light (geom/scene.h) comes to it in two steps, each the project's one
+// conversion: light_homogeneous gives the homogeneous form in input
+// coordinates (doubles), to_local_light below moves that into the local frame.
 // A corner extruded to infinity is (v * L.w - L.xyz, 0): away from the light;
 // (0, 0, -1, 0) when that is zero (a point light exactly on the vertex, see
 // "Limits" in geom/shadow_volume.h).
 #pragma once
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include "geom/esm_quads.h"
@@ -22,7 +24,8 @@
 
 namespace geom {
 
-// Light in input coordinates -> local frame: (xyz - origin * w, w), in double then float.
+// Homogeneous light in input coordinates (light_homogeneous) -> the shaders'
+// form in the local frame `origin`: (xyz - origin * w, w), in double, then float.
 void to_local_light(const double origin[3], const double light[4], float out[4]);
 
 // One shadow-volume side instance: writes the 4 strip corners (x, y, z, w) and
@@ -64,8 +67,5 @@ struct VolumeMesh {
 };
 VolumeMesh finite_volume(const ShadowVolume& volume, const float light[4], const double lo[3], const double hi[3],
                          double distance);
-
-// Wavefront OBJ text of a VolumeMesh (17 significant digits), with a header comment.
-std::string volume_obj(const VolumeMesh& mesh, const std::string& comment);
 
 }  // namespace geom

@@ -15,6 +15,7 @@
 // adjacency buffer indexes `weld.positions`.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,10 +46,10 @@ struct PipelineOptions {
   bool volume = true;  // the generic shadow volume
   bool adjacency = true;
   // Free what no later stage reads as soon as it is read, so the peak holds
-  // less: the topology's per-face tables after the adjacency, the face normals
-  // after the ESM quads, the edge table after the volume. Pipeline::topology
-  // then keeps its stats only, Pipeline::planes its origin, planes and
-  // face_plane.
+  // less: the topology's per-face tables after the adjacency, the face
+  // normals after the ESM quads, the edge table after the volume.
+  // Pipeline::topology then keeps its stats only, Pipeline::planes its
+  // origin, planes and face_plane.
   bool release_early = false;
   bool timing = false;  // Pipeline::stages
 };
@@ -79,10 +80,12 @@ struct Pipeline {
 
 // Runs the pipeline over `triangle_count` triangles (`indices`: 3 each, into
 // `positions`), with an exact volume for each of `lights`. Deterministic: the
-// same input and options give the same buffers on any run. May throw
-// std::bad_alloc.
+// same input and options give the same buffers on any run. `after_stage`, if
+// given, is called after each stage that ran with its name (as StageTiming's),
+// e.g. to free the input once "weld" has read it. May throw std::bad_alloc.
 Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                      const std::vector<Light>& lights = {}, const PipelineOptions& options = {});
+                      const std::vector<Light>& lights = {}, const PipelineOptions& options = {},
+                      const std::function<void(const char* stage)>& after_stage = {});
 
 // The report of what each rule saved, one line per rule, for people.
 std::string silhouette_report(const Pipeline& run);
