@@ -35,35 +35,13 @@
 #include <string>
 #include <vector>
 
+#include "focus_fixtures.h"
 #include "geom/focus.h"
 
 using namespace geom;
+using namespace focustest;
 
 namespace {
-
-struct P3 {
-  double x, y, z;
-};
-P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-P3 operator*(P3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double norm(P3 a) { return std::sqrt(dot(a, a)); }
-P3 unit(P3 a) { return a * (1 / norm(a)); }
-
-// column-major 4x4 times (p, w)
-void apply(const double* m, P3 p, double w, double out[4]) {
-  for (int r = 0; r < 4; ++r) out[r] = m[r] * p.x + m[4 + r] * p.y + m[8 + r] * p.z + m[12 + r] * w;
-}
-void multiply(const double* a, const double* b, double* out) {
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) {
-      double s = 0;
-      for (int k = 0; k < 4; ++k) s += a[k * 4 + r] * b[c * 4 + k];
-      out[c * 4 + r] = s;
-    }
-}
 
 struct HalfSpace {  // n.x <= d
   P3 n;
@@ -683,95 +661,6 @@ TEST(Focus, MatricesFromEngineFloatsMatchLookAt) {
   EXPECT_NEAR(0.5, fl.outer_cone, 1e-7);
   FocusResult spot;
   EXPECT_TRUE(compute_focus(c, fl, s.box, opt, spot)) << spot.reason;
-}
-
-// Cube faces: every direction, seams and corners included, falls on exactly
-// one face (focus_cube_face_of) and that face's matrix maps it inside; no
-// other face maps it strictly inside its square.
-TEST(CubeFaces, CoverEveryDirectionExactlyOnce) {
-  double pos[3] = {3, -2, 7};
-  double m[6][16];
-  focus_cube_faces(pos, 0.05, 100, m);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<P3> dirs;
-  for (int i = 0; i < 20000; ++i) dirs.push_back({u(rng), u(rng), u(rng)});
-  // seams and corners, exactly and one ulp away
-  for (int a = -1; a <= 1; ++a)
-    for (int b = -1; b <= 1; ++b)
-      for (int c = -1; c <= 1; ++c) {
-        if (!a && !b && !c) continue;
-        dirs.push_back({double(a), double(b), double(c)});
-        dirs.push_back({std::nextafter(double(a), 2.0), double(b), double(c)});
-        dirs.push_back({double(a), std::nextafter(double(b), -2.0), 0.5 * c});
-      }
-  for (P3 d : dirs) {
-    double dd[3] = {d.x, d.y, d.z};
-    int face = focus_cube_face_of(dd);
-    ASSERT_GE(face, 0);
-    int strictly = 0;
-    for (int f = 0; f < 6; ++f) {
-      double c[4];
-      apply(m[f], P3{pos[0], pos[1], pos[2]} + unit(d) * 10, 1, c);
-      if (!(c[3] > 0)) continue;
-      double x = c[0] / c[3], y = c[1] / c[3], z = c[2] / c[3];
-      bool closed = std::fabs(x) <= 1 + 1e-12 && std::fabs(y) <= 1 + 1e-12;
-      bool open = std::fabs(x) < 1 - 1e-12 && std::fabs(y) < 1 - 1e-12;
-      if (f == face) {
-        EXPECT_TRUE(closed) << "face " << f << " misses its own direction";
-        EXPECT_LE(std::fabs(z), 1);
-      }
-      if (open) {
-        ++strictly;
-        EXPECT_EQ(face, f);
-      }
-    }
-    EXPECT_LE(strictly, 1);
-  }
-  double zero[3] = {0, 0, 0}, bad[3] = {NAN, 1, 0};
-  EXPECT_EQ(-1, focus_cube_face_of(zero));
-  EXPECT_EQ(-1, focus_cube_face_of(bad));
-}
-
-// The orientation of each face is OpenGL's cube-map table: a direction's
-// face coordinates (s, t) from the spec, mapped to [-1, 1], equal the matrix's
-// clip x, y (sc / |ma|, tc / |ma|, spec 4.5 Table 8.19).
-TEST(CubeFaces, MatchOpenGLFaceTable) {
-  double pos[3] = {0, 0, 0}, m[6][16];
-  focus_cube_faces(pos, 0.1, 10, m);
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int i = 0; i < 2000; ++i) {
-    double d[3] = {u(rng), u(rng), u(rng)};
-    int f = focus_cube_face_of(d);
-    double rx = d[0], ry = d[1], rz = d[2], sc, tc, ma;
-    switch (f) {
-      case 0:
-        sc = -rz, tc = -ry, ma = rx;
-        break;
-      case 1:
-        sc = rz, tc = -ry, ma = rx;
-        break;
-      case 2:
-        sc = rx, tc = rz, ma = ry;
-        break;
-      case 3:
-        sc = rx, tc = -rz, ma = ry;
-        break;
-      case 4:
-        sc = rx, tc = -ry, ma = rz;
-        break;
-      default:
-        sc = -rx, tc = -ry, ma = rz;
-        break;
-    }
-    double c[4];
-    apply(m[f], P3{d[0], d[1], d[2]}, 1, c);
-    // Rendering flips nothing: clip x = s, clip y = -t would be D3D; GL's
-    // window y and texture t both grow upwards, so clip y = t.
-    EXPECT_NEAR(sc / std::fabs(ma), c[0] / c[3], 1e-12);
-    EXPECT_NEAR(tc / std::fabs(ma), c[1] / c[3], 1e-12);
-  }
 }
 
 // geombake focus: a frame in, JSON out; bad input: Error: FILE: ..., exit 1.

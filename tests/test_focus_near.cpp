@@ -35,22 +35,14 @@
 #include <string>
 #include <vector>
 
+#include "focus_fixtures.h"
 #include "geom/focus.h"
 
 using namespace geom;
+using namespace focustest;
 
 namespace {
 
-struct P3 {
-  double x, y, z;
-};
-P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-P3 operator*(P3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double norm(P3 a) { return std::sqrt(dot(a, a)); }
-P3 unit(P3 a) { return a * (1 / norm(a)); }
 P3 from(const double* p) { return {p[0], p[1], p[2]}; }
 void put(P3 a, double* p) { p[0] = a.x, p[1] = a.y, p[2] = a.z; }
 
