@@ -10,7 +10,8 @@
 // paper), and the sample takes the comparison of the corner whose quadrant it
 // lies in. A cell without a silhouette point holds its centre: its quadrants
 // are the four quarters and the answer is the nearest depth sample's.
-// One deviation, measured in docs/geombench.md: where the receiver is not
+// One deviation, measured in docs/geombench.md (against the paper's lookup,
+// this file without the test, at commit 6874cf6): where the receiver is not
 // behind the silhouette edges stored around it (its own silhouette from the
 // light, where the comparisons differ from the surface's slope alone), the
 // nearest depth sample's comparison stands, as in lookup_edsm.frag.
@@ -19,7 +20,6 @@ uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a l
 uniform usampler2DArray u_edge_map;         // RG32UI: the silhouette point (offset from the cell's centre, 2 x snorm16), edge depth bits
 vec4 face_clip(vec3 world, out int layer);
 int g_layer = 0;
-uniform int u_sssm_paper;              // 0: with the deviation above (default), 1: the paper's lookup
 
 float edge_depth = 0.0;  // the farthest edge among the cells read
 
@@ -59,7 +59,7 @@ float shadow_visibility(vec3 world, vec3 normal) {
   float t = angle(point_at(i + ivec2(0, 1), size) + vec2(0.0, 1.0) - C);
   float l = angle(point_at(i - ivec2(1, 0), size) - vec2(1.0, 0.0) - C);
   float b = angle(point_at(i - ivec2(0, 1), size) - vec2(0.0, 1.0) - C);
-  if (u_sssm_paper == 0 && p.z <= edge_depth + 1.0e-4) return q.y < 0.0 ? (q.x < 0.0 ? g.w : g.z) : (q.x < 0.0 ? g.x : g.y);
+  if (p.z <= edge_depth + 1.0e-4) return q.y < 0.0 ? (q.x < 0.0 ? g.w : g.z) : (q.x < 0.0 ? g.x : g.y);
   if (ccw(r, a) < ccw(r, t)) return g.y;  // right .. top: corner (1, 1)
   if (ccw(t, a) < ccw(t, l)) return g.x;  // top .. left: corner (0, 1)
   if (ccw(l, a) < ccw(l, b)) return g.w;  // left .. bottom: corner (0, 0)

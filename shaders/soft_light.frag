@@ -35,3 +35,33 @@ float disc_fraction(float x) {
   x = clamp(x, -1.0, 1.0);
   return (acos(x) - x * sqrt(1.0 - x * x)) / 3.14159265;
 }
+
+// The same half width for any light clip matrix m (a fitted frustum, a cube
+// face: lookup_esm_soft.frag), from the geometry instead of a projection's
+// parameters: the occluder is the point of the receiver's ray to the light
+// (u_light, homogeneous, in m's frame) at window depth zo (m is projective, so
+// its depth along the ray solves linearly); the penumbra's half width there is
+// W = R (d_r - d_o) / d_o (point) or tan(R) (d_r - d_o) (directional), across
+// the ray; in texels across the edge, whose texel-space normal is n, it is
+// W |J^T n| with J the exact derivative of the texel position across the ray.
+uniform vec4 u_light;  // shade.frag's: the light, homogeneous, local frame
+
+float penumbra_texels_at(mat4 m, vec3 world, float zo, vec2 n, vec2 size) {
+  bool point = u_light.w != 0.0;
+  vec3 ray = point ? world - u_light.xyz / u_light.w : -normalize(u_light.xyz);  // light -> receiver
+  vec4 c = m * vec4(world, 1.0), dc = m * vec4(-ray, 0.0);  // along the ray towards the light
+  float zn = zo * 2.0 - 1.0;
+  // (c + s dc).z / (c + s dc).w = zn: s, the share of `ray` back to the occluder.
+  float den = dc.z - zn * dc.w;
+  if (abs(den) < 1e-30) return 0.0;
+  float s = (zn * c.w - c.z) / den;
+  float W = point ? u_light_radius * s / max(1.0 - s, 1e-6)          // d_r s / (d_r (1 - s)) = (d_r - d_o) / d_o
+                  : tan(u_light_radius) * s;                          // |ray| = 1 for the sun
+  if (!(W > 0.0)) return 0.0;
+  vec3 r = normalize(ray);
+  vec3 u1 = normalize(cross(r, abs(r.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0))), u2 = cross(r, u1);
+  vec4 a = m * vec4(u1, 0.0), b = m * vec4(u2, 0.0);
+  vec2 ja = (a.xy * c.w - c.xy * a.w) / (c.w * c.w) * 0.5 * size;  // texels per unit along u1
+  vec2 jb = (b.xy * c.w - c.xy * b.w) / (c.w * c.w) * 0.5 * size;
+  return W * length(vec2(dot(ja, n), dot(jb, n)));
+}

@@ -3,8 +3,8 @@
 // second map of the same size (s.edge_map) drawn from the casters' edges with
 // the depth map on texture unit 1 (read without comparison).
 #pragma once
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "state.h"
 
@@ -32,5 +32,10 @@ void end_edge_pass(Frame& f, EdgeTarget target);
 void draw_adjacency(const State& s);
 // begin_edge_pass, draw_adjacency, end_edge_pass.
 void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target);
+
+// esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each
+// `texels` wide beyond its edge) with the fragment shader `frag`, MAX blended
+// into the edge map after the face's depth map (bias factor `slope`).
+bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float texels, const std::string& frag);
 
 }  // namespace render

@@ -14,21 +14,7 @@ constexpr float kBias = 2.0f;
 
 // One face: the depth map, then the silhouette quads beside it.
 bool esm_face(Frame& f, const glm::mat4& light_clip) {
-  GLuint p = edge_program(f, light_clip, kBias, GL_RGBA32F, {"esm_quad.vert", "esm_edges.frag"});
-  if (!p) return false;
-  const float texels = 2.5f;  // quad reach beyond the edge, in texels
-  set(p, "u_extrude_scale", 2.0f * texels / (float(f.n) * projection_scale(light_clip)));
-  set(p, "u_planes", 2);
-  begin_edge_pass(f, p, "extended map quads", EdgeTarget::ExtendedMax);
-  for (const Caster& c : f.s.casters) {
-    set(p, "u_light_view_proj", at(glm::dmat4(light_clip), c.origin));
-    set(p, "u_light", local_light(c, glm::dvec4(f.light.position)));
-    glBindTextureUnit(2, c.esm_planes);
-    glBindVertexArray(c.esm_vao);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
-  }
-  end_edge_pass(f, EdgeTarget::ExtendedMax);
-  return true;
+  return esm_quad_pass(f, light_clip, kBias, 2.5f, "esm_edges.frag");  // quad reach beyond the edge: 2.5 texels
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 //    signed edge distance into a light fraction with the disc's kernel (soft_light.frag).
 //  - pcf-soft, the baseline: the depth map, then PCF with a kernel as wide as
 //    the penumbra after a blocker search (shaders/lookup_pcf_soft.frag).
-// Both estimate the penumbra the same way (soft_light.frag) and share its reach.
+// Both estimate the penumbra the same way (soft_light.frag) and share its reach,
+// as does esm-soft (esm_soft.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -17,28 +18,11 @@ namespace {
 
 constexpr float kMaxReach = 32;  // texels: the edge quads' and the blocker search's widest reach
 
-// The widest penumbra (half width, texels) over the scene's bounding sphere: an
-// occluder at its near side, a receiver at its far side.
-float reach(const Frame& f) {
-  const State& s = f.s;
-  const float R = std::max(f.fs.light_radius, 0.0f), r = std::max(s.bounds.w, 1e-6f);
-  const float scale = f.light_frame.proj[0][0] * float(f.n) * 0.5f;  // NDC per unit -> texels
-  float ndc = 0;
-  if (f.light.position.w == 0) {
-    ndc = std::tan(std::min(R, 1.5f)) * 2 * r;
-  } else {
-    const float d = glm::length(glm::vec3(s.bounds) - glm::vec3(f.light.position));
-    const float near_side = std::max(d - r, r * 0.05f), far_side = d + r;
-    ndc = R * (far_side - near_side) / (near_side * far_side);
-  }
-  return std::clamp(ndc * scale, 2.0f, kMaxReach);
-}
-
 void set_soft_uniforms(Frame& f, GLuint p) {
   set(p, "u_light_proj", f.light_frame.proj);
   set(p, "u_light_radius", f.fs.light_radius);
   set(p, "u_map_size", float(f.n));
-  set(p, "u_reach", reach(f));
+  set(p, "u_reach", soft_reach(f));
 }
 
 bool shade_scene(Frame& f) {
@@ -50,16 +34,33 @@ bool shade_scene(Frame& f) {
 
 }  // namespace
 
+float soft_reach(const Frame& f) { return soft_reach(f, f.light_frame.proj[0][0]); }
+
+float soft_reach(const Frame& f, float projection) {
+  const State& s = f.s;
+  const float R = std::max(f.fs.light_radius, 0.0f), r = std::max(s.bounds.w, 1e-6f);
+  const float scale = projection * float(f.n) * 0.5f;  // NDC per unit -> texels
+  float ndc = 0;
+  if (f.light.position.w == 0) {
+    ndc = std::tan(std::min(R, 1.5f)) * 2 * r;
+  } else {
+    const float d = glm::length(glm::vec3(s.bounds) - glm::vec3(f.light.position));
+    const float near_side = std::max(d - r, r * 0.05f), far_side = d + r;
+    ndc = R * (far_side - near_side) / (near_side * far_side);
+  }
+  return std::clamp(ndc * scale, 2.0f, kMaxReach);
+}
+
 bool edsm_soft_passes(Frame& f) {
   State& s = f.s;
   f.light_frame = light_frame(s, f.light);
   const glm::mat4 light_clip = f.light_frame.clip();
-  GLuint p = edge_program(f, light_clip, 1.5f, GL_RG32F,
-                          {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
+  GLuint p =
+      edge_program(f, light_clip, 1.5f, GL_RG32F, {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
   if (!p) return false;
   set(p, "u_matrix", light_clip);
   set(p, "u_half_width", 2.0f);  // the hard edsm's
-  set(p, "u_max_half_width", reach(f));
+  set(p, "u_max_half_width", soft_reach(f));
   set(p, "u_light_proj", f.light_frame.proj);
   set(p, "u_light_radius", f.fs.light_radius);
   adjacency_edge_pass(f, p, "edge distance map", EdgeTarget::Distance);
@@ -70,7 +71,7 @@ bool edsm_soft_passes(Frame& f) {
   return true;
 }
 
-bool edsm_soft_shade(Frame& f, GLuint p) {
+bool soft_shade(Frame& f, GLuint p) {
   set_soft_uniforms(f, p);
   return shade_scene(f);
 }

@@ -4,8 +4,6 @@
 // (geom/adjacency.h) and stores one point on the silhouette per cell of a
 // second map offset by half a texel (shaders/sssm_edges.*); the lookup,
 // shaders/lookup_sssm.frag, rebuilds the boundary from the 3 x 3 neighbourhood.
-#include <cstdlib>
-
 #include "edge_pass.h"
 
 namespace render {
@@ -29,17 +27,6 @@ bool sssm_face(Frame& f, const glm::mat4& light_clip) {
 bool sssm_passes(Frame& f) {
   if (!silhouette_faces(f, sssm_face, GL_RG32UI)) return false;
   f.lookup = "lookup_sssm.frag";
-  return true;
-}
-
-// The shading: GEOM_SSSM_PAPER=1 in the environment draws the paper's lookup
-// without the receiver test (lookup_sssm.frag), to measure the deviation.
-bool sssm_shade(Frame& f, GLuint p) {
-  const char* paper = std::getenv("GEOM_SSSM_PAPER");
-  set(p, "u_sssm_paper", paper && paper[0] == '1' ? 1 : 0);
-  f.timer.begin("shading");
-  draw_scene(f.s);
-  f.timer.end();
   return true;
 }
 

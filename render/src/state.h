@@ -10,7 +10,7 @@
 
 namespace render {
 
-// The static buffers of one caster (geom/silhouette.h), in its local frame,
+// The static buffers of one caster (geom/pipeline.h), in its local frame,
 // uploaded from a BakedView (casters.cpp).
 struct Caster {
   glm::vec3 lo{0}, hi{0};  // world bounding box
@@ -127,7 +127,7 @@ struct TechniqueRow {
   bool needs_esm, needs_volume, needs_adjacency;  // the caster buffers it draws
   bool has_map;
   bool needs_point_light;
-  bool soft;  // a light fraction under a disc light
+  bool soft;                       // a light fraction under a disc light
   bool (*light_passes)(Frame& f);  // the passes before shading; sets lookup and textures
   // The shading (null: one pass of the shading program); `p` is the program.
   bool (*shade)(Frame& f, GLuint p);
@@ -138,11 +138,19 @@ const TechniqueRow& technique_row(Technique t);
 // name, one family per file (see its rows); `no_pass` (never defined) stands for
 // "none" and is the null pointer in the table.
 #define GEOM_TECHNIQUE(Id, name, esm, volume, adjacency, map, point, soft, passes, shade) \
-  bool passes(Frame& f);                                                                \
+  bool passes(Frame& f);                                                                  \
   bool shade(Frame& f, GLuint p);
 #include "render/techniques.def"
 #undef GEOM_TECHNIQUE
 bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
+
+// soft.cpp, shared by the soft techniques (FrameSettings::light_radius): the
+// widest penumbra's half width in texels over the scene's bounding sphere (the
+// edge quads' reach), on the scene-wide light frame or on a light clip matrix
+// of projection scale `projection` (projection_scale); soft_shade (one pass
+// with soft_light.frag's uniforms) is named in techniques.def.
+float soft_reach(const Frame& f);
+float soft_reach(const Frame& f, float projection);
 
 // Shared by the map techniques (shadow_map.cpp).
 LightFrame light_frame(const State& s, const FrameLight& light);

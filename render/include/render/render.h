@@ -13,10 +13,11 @@
 //   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame
 //   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
 //   esm.cpp, edsm.cpp ...... extended shadow map (seed 000), edge distance shadow map (seed 001)
-//   edge_pass.h, .cpp ...... the edge pass the silhouette maps share (esm, edsm, sssm, edsm-soft)
+//   edge_pass.h, .cpp ...... the edge pass the silhouette maps share (esm, edsm, sssm, the edge-distance soft ones)
 //   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (seed 004)
 //   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, seed 001's baseline)
 //   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; seed 001 Sect. 6)
+//   esm_soft.cpp ........... esm-soft: the extended shadow map's distance under the disc (seed 000 Sect. 3.2)
 //   inspection.cpp ......... the overlay: topology problems, silhouette quads, the focus body
 //   platform.cpp ........... EGL (headless) and GLFW (window) glue, render/platform.h
 //
@@ -39,10 +40,10 @@
 
 #include "geom/baked_reader.h"
 #include "geom/esm_quads.h"
+#include "geom/pipeline.h"
 #include "geom/png.h"
 #include "geom/scene.h"
 #include "geom/shadow_volume.h"
-#include "geom/silhouette.h"
 
 namespace render {
 
@@ -59,10 +60,10 @@ const char* technique_name(Technique t);
 bool parse_technique(const std::string& name, Technique& out);  // false: unknown or unavailable
 bool technique_has_map(Technique t);                            // false for the shadow volumes (no shadow-map size)
 bool technique_needs_point_light(Technique t);                  // cube: no directional light
-bool technique_is_soft(Technique t);                            // the *-soft techniques: a light fraction (light_radius)
+bool technique_is_soft(Technique t);                            // the *-soft ones: a light fraction (light_radius)
 
 // The silhouette buffers of one caster as the renderer takes them: borrowed
-// arrays, from an in-process bake (geom/silhouette.h) or a baked container
+// arrays, from an in-process bake (geom/pipeline.h) or a baked container
 // (geom/baked_reader.h) alike. Null arrays with `has_*` false: not baked.
 struct BakedView {
   double origin[3] = {0, 0, 0};   // the caster's local frame (geom/face_planes.h)
@@ -96,7 +97,7 @@ struct BakedView {
 };
 
 // The view of an in-process bake (borrows `buffers`).
-BakedView baked_view(const geom::SilhouetteBuffers& buffers);
+BakedView baked_view(const geom::Pipeline& buffers);
 // The view of a baked container's one caster (borrows the reader's bytes);
 // false with `error` when it has no usable positions and indices.
 bool baked_view(const geom::baked::Reader& reader, BakedView& out, std::string& error);
@@ -115,7 +116,7 @@ struct FrameSettings {
   Output output = Output::Color;
   int shadow_map_size = 1024;
   bool inspect = false;  // overlay: silhouette quads, topology problems, focus body (colour output only)
-  // The light's radius for the soft techniques (edsm-soft, pcf-soft): a disc facing
+  // The light's radius for the soft techniques (edsm-soft, esm-soft, pcf-soft): a disc facing
   // the receiver, world units for a point or spot light, radians (its angular
   // radius) for a directional light. 0: a point light (their hard answer).
   float light_radius = 0;
