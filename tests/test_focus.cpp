@@ -35,36 +35,13 @@
 #include <string>
 #include <vector>
 
-#include "focus_body.h"
+#include "focus_fixtures.h"
 #include "geom/focus.h"
 
 using namespace geom;
+using namespace focustest;
 
 namespace {
-
-struct P3 {
-  double x, y, z;
-};
-P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-P3 operator*(P3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double norm(P3 a) { return std::sqrt(dot(a, a)); }
-P3 unit(P3 a) { return a * (1 / norm(a)); }
-
-// column-major 4x4 times (p, w)
-void apply(const double* m, P3 p, double w, double out[4]) {
-  for (int r = 0; r < 4; ++r) out[r] = m[r] * p.x + m[4 + r] * p.y + m[8 + r] * p.z + m[12 + r] * w;
-}
-void multiply(const double* a, const double* b, double* out) {
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) {
-      double s = 0;
-      for (int k = 0; k < 4; ++k) s += a[k * 4 + r] * b[c * 4 + k];
-      out[c * 4 + r] = s;
-    }
-}
 
 struct HalfSpace {  // n.x <= d
   P3 n;
@@ -686,95 +663,6 @@ TEST(Focus, MatricesFromEngineFloatsMatchLookAt) {
   EXPECT_TRUE(compute_focus(c, fl, s.box, opt, spot)) << spot.reason;
 }
 
-// Cube faces: every direction, seams and corners included, falls on exactly
-// one face (focus_cube_face_of) and that face's matrix maps it inside; no
-// other face maps it strictly inside its square.
-TEST(CubeFaces, CoverEveryDirectionExactlyOnce) {
-  double pos[3] = {3, -2, 7};
-  double m[6][16];
-  focus_cube_faces(pos, 0.05, 100, m);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<P3> dirs;
-  for (int i = 0; i < 20000; ++i) dirs.push_back({u(rng), u(rng), u(rng)});
-  // seams and corners, exactly and one ulp away
-  for (int a = -1; a <= 1; ++a)
-    for (int b = -1; b <= 1; ++b)
-      for (int c = -1; c <= 1; ++c) {
-        if (!a && !b && !c) continue;
-        dirs.push_back({double(a), double(b), double(c)});
-        dirs.push_back({std::nextafter(double(a), 2.0), double(b), double(c)});
-        dirs.push_back({double(a), std::nextafter(double(b), -2.0), 0.5 * c});
-      }
-  for (P3 d : dirs) {
-    double dd[3] = {d.x, d.y, d.z};
-    int face = focus_cube_face_of(dd);
-    ASSERT_GE(face, 0);
-    int strictly = 0;
-    for (int f = 0; f < 6; ++f) {
-      double c[4];
-      apply(m[f], P3{pos[0], pos[1], pos[2]} + unit(d) * 10, 1, c);
-      if (!(c[3] > 0)) continue;
-      double x = c[0] / c[3], y = c[1] / c[3], z = c[2] / c[3];
-      bool closed = std::fabs(x) <= 1 + 1e-12 && std::fabs(y) <= 1 + 1e-12;
-      bool open = std::fabs(x) < 1 - 1e-12 && std::fabs(y) < 1 - 1e-12;
-      if (f == face) {
-        EXPECT_TRUE(closed) << "face " << f << " misses its own direction";
-        EXPECT_LE(std::fabs(z), 1);
-      }
-      if (open) {
-        ++strictly;
-        EXPECT_EQ(face, f);
-      }
-    }
-    EXPECT_LE(strictly, 1);
-  }
-  double zero[3] = {0, 0, 0}, bad[3] = {NAN, 1, 0};
-  EXPECT_EQ(-1, focus_cube_face_of(zero));
-  EXPECT_EQ(-1, focus_cube_face_of(bad));
-}
-
-// The orientation of each face is OpenGL's cube-map table: a direction's
-// face coordinates (s, t) from the spec, mapped to [-1, 1], equal the matrix's
-// clip x, y (sc / |ma|, tc / |ma|, spec 4.5 Table 8.19).
-TEST(CubeFaces, MatchOpenGLFaceTable) {
-  double pos[3] = {0, 0, 0}, m[6][16];
-  focus_cube_faces(pos, 0.1, 10, m);
-  std::mt19937 rng(12);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int i = 0; i < 2000; ++i) {
-    double d[3] = {u(rng), u(rng), u(rng)};
-    int f = focus_cube_face_of(d);
-    double rx = d[0], ry = d[1], rz = d[2], sc, tc, ma;
-    switch (f) {
-      case 0:
-        sc = -rz, tc = -ry, ma = rx;
-        break;
-      case 1:
-        sc = rz, tc = -ry, ma = rx;
-        break;
-      case 2:
-        sc = rx, tc = rz, ma = ry;
-        break;
-      case 3:
-        sc = rx, tc = -rz, ma = ry;
-        break;
-      case 4:
-        sc = rx, tc = -ry, ma = rz;
-        break;
-      default:
-        sc = -rx, tc = -ry, ma = rz;
-        break;
-    }
-    double c[4];
-    apply(m[f], P3{d[0], d[1], d[2]}, 1, c);
-    // Rendering flips nothing: clip x = s, clip y = -t would be D3D; GL's
-    // window y and texture t both grow upwards, so clip y = t.
-    EXPECT_NEAR(sc / std::fabs(ma), c[0] / c[3], 1e-12);
-    EXPECT_NEAR(tc / std::fabs(ma), c[1] / c[3], 1e-12);
-  }
-}
-
 // geombake focus: a frame in, JSON out; bad input: Error: FILE: ..., exit 1.
 TEST(FocusCommand, PrintsJsonAndRejectsBadInput) {
   std::string dir = std::string(GEOM_BINARY_DIR) + "/tests";
@@ -800,102 +688,4 @@ TEST(FocusCommand, PrintsJsonAndRejectsBadInput) {
   std::ofstream(bad) << "{ not json";
   rc = std::system((geombake + " focus " + bad + " > " + out + " 2>&1").c_str());
   EXPECT_EQ(1, WEXITSTATUS(rc));
-}
-
-// The CGAL 3D hull path of H's faces (index_polytope), taken when the clipped
-// polygons do not close cleanly. A unit cube whose top face comes as two
-// halves: the side faces then meet a vertex in the middle of their top edge
-// (a T-junction), so the hull decides:
-//
-//        +-----+-----+        top, split at x = 0.5
-//        |     |     |
-//        +-----+-----+
-TEST(FocusFaces, HullPathClosesAroundTJunctions) {
-  using focus::V3;
-  focus::Polytope p;
-  auto quad = [&](V3 a, V3 b, V3 c, V3 d) {
-    for (V3 v : {a, b, c, d}) p.pts.push_back(v);
-    p.sizes.push_back(4);
-  };
-  V3 c[8];
-  for (int i = 0; i < 8; ++i) c[i] = V3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  quad(c[0], c[2], c[3], c[1]);                    // z = 0
-  quad(c[4], c[5], V3(0.5, 1, 1), V3(0.5, 0, 1));  // z = 1, left half (wrong on purpose:
-  quad(V3(0.5, 0, 1), V3(0.5, 1, 1), c[7], c[6]);  // two halves of one face)
-  quad(c[0], c[1], c[5], c[4]);
-  quad(c[2], c[6], c[7], c[3]);
-  quad(c[0], c[4], c[6], c[2]);
-  quad(c[1], c[3], c[7], c[5]);
-  std::vector<double> xyz;
-  std::vector<uint32_t> sizes, idx;
-  focus::index_polytope(p, 1e-9, xyz, sizes, idx);
-  EXPECT_EQ(8u, xyz.size() / 3) << "the mid-edge points are no corners of the hull";
-  EXPECT_EQ(6u, sizes.size());
-  size_t edges = 0;
-  for (uint32_t n : sizes) edges += n;
-  EXPECT_EQ(2, long(xyz.size() / 3) - long(edges / 2) + long(sizes.size()));
-}
-
-// The same path on the clipped body that once showed CGAL 5.5's indexed
-// hull output turning a triangle inside out (five coplanar points on top):
-// every face must be planar and have the whole body on its inner side.
-TEST(FocusFaces, HullPathOnCoplanarPoints) {
-  const double v[14][3] = {{30.19296516923702, 35.784288966538632, -32.229582418873441},
-                           {30.192965169237016, 36.586921566597297, -49.191882523974385},
-                           {22.50026572276429, 47.10249001755151, -65.650110348388694},
-                           {-10.428319400955537, 17.440086852301601, -39.135700583421297},
-                           {30.192965169237013, 17.440086852301601, -33.370035928091653},
-                           {-10.428319400955539, 52.801626379344555, -32.229582418873441},
-                           {6.1085250742134116, 17.440086852301604, -57.692623009771275},
-                           {16.748155232885125, 52.801626379344555, -32.229582418873441},
-                           {-10.428319400955544, 17.440086852301601, -32.229582418873441},
-                           {6.9435086054241761, 28.090301909196238, -65.650110348388694},
-                           {17.997575123940152, 52.801626379344555, -65.650110348388694},
-                           {30.19296516923702, 17.440086852301601, -32.229582418873441},
-                           {-10.428319400955537, 52.801626379344555, -62.44564107108318},
-                           {-7.5726837062666172, 52.801626379344555, -65.650110348388694}};
-  focus::Polytope p;
-  for (const auto& q : v) p.pts.push_back(focus::V3(q[0], q[1], q[2]));
-  p.sizes.push_back(14);  // one "polygon" holding every point: not a closed surface, so the hull decides
-  std::vector<double> xyz;
-  std::vector<uint32_t> sizes, idx;
-  focus::index_polytope(p, 1e-8, xyz, sizes, idx);
-  size_t nv = xyz.size() / 3, edges = 0;
-  ASSERT_GE(nv, 4u);
-  for (uint32_t n : sizes) edges += n;
-  EXPECT_EQ(2, long(nv) - long(edges / 2) + long(sizes.size()));
-  P3 centre{0, 0, 0};
-  for (size_t i = 0; i < nv; ++i) centre = centre + P3{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]} * (1.0 / double(nv));
-  size_t base = 0;
-  for (uint32_t n : sizes) {
-    auto at = [&](uint32_t k) { return P3{xyz[3 * idx[k]], xyz[3 * idx[k] + 1], xyz[3 * idx[k] + 2]}; };
-    P3 nn{0, 0, 0};
-    for (uint32_t i = 0; i < n; ++i) nn = nn + cross(at(base + i) - centre, at(base + (i + 1) % n) - centre);
-    nn = unit(nn);
-    double d = dot(nn, at(base));
-    for (uint32_t i = 0; i < n; ++i) EXPECT_NEAR(d, dot(nn, at(base + i)), 1e-6) << "face not planar";
-    for (size_t i = 0; i < nv; ++i)
-      EXPECT_LE(dot(nn, P3{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}), d + 1e-6) << "vertex outside a face";
-    base += n;
-  }
-}
-
-// The 3D-hull body (focus_hull), the fallback when the silhouette has no
-// area: the box [0,1]^3 with a point light at (0.5, 0.5, 3) gives the
-// pyramid-topped box, clipped by S = [-1,2] x [-1,2] x [0,2].
-TEST(FocusFaces, HullBodyFallback) {
-  using focus::V3;
-  V3 c[8] = {V3(0, 0, 1), V3(1, 0, 1), V3(1, 1, 1), V3(0, 1, 1), V3(0, 0, 0), V3(1, 0, 0), V3(1, 1, 0), V3(0, 1, 0)};
-  focus::Polytope r, body, scratch;
-  focus::frustum_polytope(c, r);
-  std::vector<focus::Plane> clip = {{V3(0, 0, -1), 2}};  // z <= 2
-  std::vector<V3> work;
-  focus::focus_hull(r, V3(0.5, 0.5, 3), false, 0, clip.data(), clip.size(), 1e-9, work, body, scratch);
-  std::vector<V3> verts;
-  focus::unique_vertices(body, 1e-9, verts);
-  EXPECT_EQ(12u, verts.size());  // 8 box corners + 4 where the pyramid meets z = 2
-  for (V3 v : verts) {
-    EXPECT_LE(v.z, 2 + 1e-9);
-    if (v.z > 1 + 1e-9) EXPECT_NEAR(0.25, std::fabs(v.x - 0.5), 1e-9);  // (2-1)/(3-1) of the way to the apex
-  }
 }

@@ -35,29 +35,23 @@
 #include <string>
 #include <vector>
 
+#include "focus_fixtures.h"
 #include "geom/focus.h"
 
 using namespace geom;
+using namespace focustest;
 
 namespace {
 
-struct P3 {
-  double x, y, z;
-};
-P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-P3 operator*(P3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-P3 cross(P3 a, P3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double norm(P3 a) { return std::sqrt(dot(a, a)); }
-P3 unit(P3 a) { return a * (1 / norm(a)); }
 P3 from(const double* p) { return {p[0], p[1], p[2]}; }
 void put(P3 a, double* p) { p[0] = a.x, p[1] = a.y, p[2] = a.z; }
 
 enum Place { Inside, SidePlane, NearPlane, CameraPlane, AtEye, SpotInside, SpotOnPlane, Far, Around, Sun, kPlaces };
-const char* const kPlaceNames[kPlaces] = {"point inside V", "point on a side plane of V", "point on V's near plane",
-                                          "point on the camera plane", "point at the eye", "spot inside V",
-                                          "spot on a plane of V", "far point", "point around S", "directional"};
+const char* const kPlaceNames[kPlaces] = {"point inside V",          "point on a side plane of V",
+                                          "point on V's near plane", "point on the camera plane",
+                                          "point at the eye",        "spot inside V",
+                                          "spot on a plane of V",    "far point",
+                                          "point around S",          "directional"};
 
 // One frame: the camera's look-at parameters, the box, the light.
 struct Frame {
@@ -79,9 +73,7 @@ struct Frame {
   P3 at(double d, double x, double y) const {
     return eye + view * d + vup * (y * tan_y * d) + side * (x * tan_y * aspect * d);
   }
-  double size() const {
-    return norm(P3{box.max[0] - box.min[0], box.max[1] - box.min[1], box.max[2] - box.min[2]});
-  }
+  double size() const { return norm(P3{box.max[0] - box.min[0], box.max[1] - box.min[1], box.max[2] - box.min[2]}); }
 };
 
 // Membership, independent of the library, with a margin `m` inwards (a
@@ -189,7 +181,7 @@ Frame make_frame(int iter, std::mt19937& rng) {
     l.type = LightType::Directional;
     P3 dir = unit(P3{u(rng), u(rng), u(rng)});
     if (iter % 4 == 1) dir = f.view * (iter % 8 == 1 ? 1 : -1);  // exactly along the view
-    if (iter % 4 == 3) dir = f.vup * -1;                          // across the view
+    if (iter % 4 == 3) dir = f.vup * -1;                         // across the view
     put(dir, l.direction);
   }
   return f;
@@ -238,7 +230,8 @@ bool find_miss(const Frame& f, const FocusResult& r, const std::vector<P3>& pts,
   for (P3 q : pts) {
     if (point_like && (r.near_floor_cut || r.needs_cube_map) && dot(q - lp, axis) < r.light_near) continue;
     double c[4];
-    for (int k = 0; k < 4; ++k) c[k] = r.matrix[k] * q.x + r.matrix[4 + k] * q.y + r.matrix[8 + k] * q.z + r.matrix[12 + k];
+    for (int k = 0; k < 4; ++k)
+      c[k] = r.matrix[k] * q.x + r.matrix[4 + k] * q.y + r.matrix[8 + k] * q.z + r.matrix[12 + k];
     bool ok = c[3] > 0;
     for (int k = 0; k < 3 && ok; ++k) ok = std::fabs(c[k] / c[3]) <= 1 + 1e-6;
     if (ok) continue;
@@ -274,9 +267,8 @@ TEST(FocusNearPlane, EveryReceiverAndCasterMapsInside) {
     P3 lp = from(f.light.position);
     for (P3 q : receivers) {
       double t = u01(rng);
-      P3 c = f.light.type == LightType::Directional
-                 ? q - unit(from(f.light.direction)) * (t * f.size())
-                 : q + (lp - q) * (t * t);
+      P3 c = f.light.type == LightType::Directional ? q - unit(from(f.light.direction)) * (t * f.size())
+                                                    : q + (lp - q) * (t * t);
       if (reg.in_s(c) && reg.in_l(c)) casters.push_back(c);
     }
     if (!receivers.empty()) ++frames_with_receivers;
@@ -298,15 +290,16 @@ TEST(FocusNearPlane, EveryReceiverAndCasterMapsInside) {
                       "iter %d (%s, %s, fallback %s): a %s at %.3g of the farthest's distance from the light maps to "
                       "(%.3g, %.3g, %.3g), w %.3g; light_near %.3g\n",
                       iter, kPlaceNames[f.place], focus_method_name(m), focus_fallback_name(r.fallback),
-                      miss.receiver ? "receiver" : "caster", miss.far > 0 ? miss.dist / miss.far : 0.0,
-                      miss.coords[0], miss.coords[1], miss.coords[2], miss.w, r.light_near);
+                      miss.receiver ? "receiver" : "caster", miss.far > 0 ? miss.dist / miss.far : 0.0, miss.coords[0],
+                      miss.coords[1], miss.coords[2], miss.w, r.light_near);
         if (!failed && (failed_frames < 12 || getenv("FOCUS_NEAR_ALL"))) report += line;
         failed = true;
       }
     }
     failed_frames += failed;
   }
-  std::printf("%d frames with receivers, %ld points checked, %d floor cuts\n", frames_with_receivers, checked, floor_cuts);
+  std::printf("%d frames with receivers, %ld points checked, %d floor cuts\n", frames_with_receivers, checked,
+              floor_cuts);
   EXPECT_EQ(0, failed_frames) << failed_frames << " of 1000 frames miss a point they must cover (" << failed_far
                               << " of them beyond 5% of the farthest receiver's distance from the light):\n"
                               << report;

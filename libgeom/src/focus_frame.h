@@ -25,7 +25,7 @@ struct Frame {
   V3 light_pos;      // point, spot
   V3 towards_light;  // directional: unit vector towards the light
   V3 light_axis;     // point, spot: the light frustum's axis (unit)
-  double light_near = 0;
+  double light_near = 0;  // point, spot: L's near plane, at the floor (near_plane_cut)
   // bodies
   std::vector<Plane> s_planes, l_planes, r_planes, hull_clip, v_planes, hull_clip_planes;
   Polytope receivers, body, scratch;
