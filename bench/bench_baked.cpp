@@ -41,7 +41,8 @@ const geom::Scene& scene() {
 
 geom::BakeOptions options() {
   geom::BakeOptions o;
-  o.lights = {{3, 4, 5, 1}};
+  const double point[4] = {3, 4, 5, 1};
+  o.lights = {geom::light_from_homogeneous(point)};
   return o;
 }
 

@@ -15,7 +15,6 @@
 #include <cmath>
 #include <vector>
 
-#include "focus_body.h"
 #include "geom/focus.h"
 
 using namespace geom;
@@ -64,12 +63,13 @@ BENCHMARK(BM_Focus)->ArgsProduct({{0, 1, 2}, {0, 1, 2}, {1, 0}})->Unit(benchmark
 
 void BM_FocusStages(benchmark::State& state) {
   Scenario s = make(int(state.range(0)));
+  FocusStageTimes t;
   FocusOptions opt;  // psm
+  opt.stage_times = &t;
   FocusResult r;
-  focus::StageTimes t;
   size_t i = 0;
   for (auto _ : state) {
-    focus::compute_focus_staged(s.cameras[i++ % s.cameras.size()], s.light, s.box, opt, r, &t);
+    compute_focus(s.cameras[i++ % s.cameras.size()], s.light, s.box, opt, r);
     benchmark::DoNotOptimize(r.matrix[0]);
   }
   double n = double(state.iterations()) / 1e6;  // -> microseconds per frame

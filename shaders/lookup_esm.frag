@@ -60,19 +60,29 @@ float shadow_visibility(vec3 world, vec3 normal) {
   if (all(equal(g, vec4(g.x)))) return g.x;  // fully lit or fully shadowed
   float e[4];
   float edge_depth = 0.0;
+  vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
+  int odd = -1, odd_count = 0;
   for (int k = 0; k < 4; ++k) {
     vec4 t = texelFetch(u_edge_map, ivec3(clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), layer), 0);
-    if (t.a == 0.0) return nearest;
     e[k] = t.r;
-    edge_depth = max(edge_depth, t.b);
+    if (t.a == 0.0 || (t.r >= 0.33) != (lit[k] > 0.5)) {
+      odd = k, ++odd_count;
+    } else {
+      edge_depth = max(edge_depth, t.b);
+    }
   }
+  if (odd_count > 1) return nearest;
   if (p.z < edge_depth) return nearest;  // the receiver is in front of the edges
   // The edges must explain the footprint: each texel's side of the edge (its
   // value against 0.33) agrees with its own depth comparison. Where another
-  // occluder shadows a texel on an edge's lit side (crossing shadows), the
-  // edge does not say where the boundary is: the nearest comparison stands.
-  vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
-  for (int k = 0; k < 4; ++k)
-    if ((e[k] >= 0.33) != (lit[k] > 0.5)) return nearest;
+  // occluder shadows a texel on an edge's lit side (crossing shadows), or a
+  // texel holds no edge, and the other three do not lie in the clamped ends of
+  // the encoding, that texel takes the plane through the three (the encoded
+  // distance is linear there, as in lookup_edsm.frag).
+  if (odd >= 0) {
+    for (int k = 0; k < 4; ++k)
+      if (k != odd && (e[k] <= 0.0 || e[k] >= 1.0)) return nearest;
+    e[odd] = e[odd ^ 1] + e[odd ^ 2] - e[odd ^ 3];
+  }
   return transfer(mix(mix(e[0], e[1], f.x), mix(e[2], e[3], f.x), f.y));
 }

@@ -8,11 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geom/esm_quads.h"
-#include "geom/face_planes.h"
-#include "geom/shadow_volume.h"
-#include "geom/topology.h"
-#include "geom/weld.h"
+#include "geom/pipeline.h"
 
 namespace fixtures {
 
@@ -240,24 +236,17 @@ inline Mesh stack() {
   return m;
 }
 
-// The silhouette pipeline on a fixture.
-struct Baked {
-  geom::WeldResult weld;
-  geom::Topology topology;
-  geom::FacePlanes planes;
-  geom::ShadowVolume volume;
-  geom::EsmQuads esm;
-};
+// The pipeline (geom/pipeline.h) on a fixture, every buffer kept (dihedral
+// angles included).
+using Baked = geom::Pipeline;
 
 inline Baked bake(const Mesh& m, const geom::ShadowVolumeOptions& svo = {}, const geom::EsmOptions& eo = {}) {
-  Baked b;
-  b.weld = geom::weld(geom::positions_of(m.positions.data(), m.vertex_count()), m.indices.data(), m.indices.size());
-  auto pos = geom::positions_of(b.weld.positions.data(), b.weld.vertex_count());
-  b.topology = geom::build_topology(pos, b.weld.indices.data(), m.triangle_count());
-  b.planes = geom::compute_face_planes(pos, b.weld.indices.data(), m.triangle_count(), b.topology);
-  b.volume = geom::build_shadow_volume(pos, b.weld.indices.data(), m.triangle_count(), b.topology, b.planes, svo);
-  b.esm = geom::build_esm_quads(pos, b.weld.indices.data(), m.triangle_count(), b.topology, b.planes, eo);
-  return b;
+  geom::PipelineOptions o;
+  o.dihedral_angles = true;
+  o.volume_options = svo;
+  o.esm_options = eo;
+  return geom::run_pipeline(geom::positions_of(m.positions.data(), m.vertex_count()), m.indices.data(),
+                            m.triangle_count(), {}, o);
 }
 
 }  // namespace fixtures

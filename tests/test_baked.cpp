@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -25,6 +26,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli/file.h"
 #include "geom/adjacency.h"
 #include "geom/atomic_file.h"
 #include "geom/bake.h"
@@ -32,9 +34,9 @@
 #include "geom/baked_writer.h"
 #include "geom/extrude.h"
 #include "geom/face_planes.h"
+#include "geom/pipeline.h"
 #include "geom/report.h"
 #include "geom/shadow_volume.h"
-#include "geom/silhouette.h"
 #include "geom/weld.h"
 
 using geom::BakedSection;
@@ -466,6 +468,13 @@ std::vector<unsigned char> bytes_of(const geom::baked::Section* s) {
   return s ? std::vector<unsigned char>(s->data, s->data + s->size) : std::vector<unsigned char>();
 }
 
+// Lights given as (x, y, z, w), as `--light` takes them.
+std::vector<geom::Light> lights_of(const std::vector<std::array<double, 4>>& homogeneous) {
+  std::vector<geom::Light> out;
+  for (const auto& h : homogeneous) out.push_back(geom::light_from_homogeneous(h.data()));
+  return out;
+}
+
 // Bakes `scene`, writes and reads back the container, and checks each section
 // against the scene and against the library stage that makes it.
 void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, const std::string& name) {
@@ -480,18 +489,14 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
 
   // The stages, run here on their own.
   const size_t tc = scene.triangle_count();
+  const geom::PipelineOptions& po = options.pipeline;
   geom::WeldResult w = geom::weld(geom::positions_of(scene.positions.data(), scene.vertex_count()),
-                                  scene.indices.data(), scene.indices.size(), options.weld_tolerance);
+                                  scene.indices.data(), scene.indices.size(), po.weld_tolerance);
   const geom::PositionSpan welded = geom::positions_of(w.positions.data(), w.vertex_count());
-  geom::Topology topo = geom::build_topology(welded, w.indices.data(), tc, options.topology);
-  std::vector<geom::LightVolume> lights =
-      options.scene_lights ? geom::scene_lights(scene) : std::vector<geom::LightVolume>();
-  for (const auto& l : options.lights) {
-    geom::LightVolume lv;
-    for (int k = 0; k < 4; ++k) lv.light[k] = l[k];
-    lights.push_back(lv);
-  }
-  const bool silhouette = options.esm || options.volume || options.adjacency || !lights.empty();
+  geom::Topology topo = geom::build_topology(welded, w.indices.data(), tc, {po.coplanar_degrees});
+  std::vector<geom::Light> lights = options.scene_lights ? scene.lights : std::vector<geom::Light>();
+  lights.insert(lights.end(), options.lights.begin(), options.lights.end());
+  const bool silhouette = po.esm || po.volume || po.adjacency || !lights.empty();
 
   const auto* pos = rd.find(SectionType::Positions);
   const auto* idx = rd.find(SectionType::Indices);
@@ -501,16 +506,16 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
   EXPECT_EQ(pos != nullptr, options.positions);
   EXPECT_EQ(idx != nullptr, options.indices);
   EXPECT_EQ(remap != nullptr, options.weld_remap);
-  EXPECT_EQ(planes != nullptr, options.face_planes);
+  EXPECT_EQ(planes != nullptr, po.face_planes);
   EXPECT_EQ(topology != nullptr, options.topology_report);
-  EXPECT_EQ(rd.find(SectionType::Frame) != nullptr, options.esm || options.volume || !lights.empty());
+  EXPECT_EQ(rd.find(SectionType::Frame) != nullptr, po.esm || po.volume || !lights.empty());
   EXPECT_EQ(rd.find(SectionType::SilhouetteReport) != nullptr, silhouette);
-  EXPECT_EQ(rd.find(SectionType::EsmQuads) != nullptr, options.esm);
-  EXPECT_EQ(rd.find(SectionType::EsmPlanes) != nullptr, options.esm);
-  EXPECT_EQ(rd.find(SectionType::VolumeSides) != nullptr, options.volume);
-  EXPECT_EQ(rd.find(SectionType::VolumeCaps) != nullptr, options.volume);
-  EXPECT_EQ(rd.find(SectionType::VolumePlanes) != nullptr, options.volume);
-  EXPECT_EQ(rd.find(SectionType::AdjacencyIndices) != nullptr, options.adjacency);
+  EXPECT_EQ(rd.find(SectionType::EsmQuads) != nullptr, po.esm);
+  EXPECT_EQ(rd.find(SectionType::EsmPlanes) != nullptr, po.esm);
+  EXPECT_EQ(rd.find(SectionType::VolumeSides) != nullptr, po.volume);
+  EXPECT_EQ(rd.find(SectionType::VolumeCaps) != nullptr, po.volume);
+  EXPECT_EQ(rd.find(SectionType::VolumePlanes) != nullptr, po.volume);
+  EXPECT_EQ(rd.find(SectionType::AdjacencyIndices) != nullptr, po.adjacency);
   EXPECT_EQ(rd.find(SectionType::Lights) != nullptr, !lights.empty());
   if (pos) {
     EXPECT_EQ(pos->format, Format::F32x3);
@@ -525,12 +530,13 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
     ASSERT_EQ(m.size(), scene.vertex_count());
     for (size_t v = 0; v < m.size(); ++v) {  // every source vertex lands on a welded vertex at its position
       ASSERT_LT(m[v], w.vertex_count());
-      if (options.weld_tolerance == 0)
+      if (po.weld_tolerance == 0)
         for (int k = 0; k < 3; ++k) EXPECT_EQ(w.positions[3 * m[v] + k], scene.positions[3 * v + k]);
     }
     for (size_t i = 0; i < scene.indices.size(); ++i) EXPECT_EQ(m[scene.indices[i]], w.indices[i]);
   }
-  geom::FacePlanes fp = geom::compute_face_planes(welded, w.indices.data(), tc, topo, options.planes);
+  geom::FacePlanes fp =
+      geom::compute_face_planes(welded, w.indices.data(), tc, topo, {po.coplanar_degrees, po.coplanar_distance});
   if (planes) {
     // Each face's stored plane, moved to input coordinates: unit normal by the
     // right-hand rule, the face's vertices on it (within the coplanar grouping's
@@ -554,7 +560,7 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
       EXPECT_NEAR(len, 1.0, 1e-6) << "triangle " << t;
       EXPECT_GT(cr[0] * n[0] + cr[1] * n[1] + cr[2] * n[2], 0.0) << "right-hand rule, triangle " << t;
       double scale = 1.0 + std::fabs(a[0]) + std::fabs(a[1]) + std::fabs(a[2]);
-      double tolerance = 2 * options.planes.coplanar_distance * fp.diagonal + 1e-6 * scale;
+      double tolerance = 2 * po.coplanar_distance * fp.diagonal + 1e-6 * scale;
       for (const float* q : {a, b, c})
         EXPECT_NEAR(double(n[0]) * q[0] + double(n[1]) * q[1] + double(n[2]) * q[2] + n[3], 0.0, tolerance)
             << "vertex on the plane, triangle " << t;
@@ -563,7 +569,7 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
   if (topology) {
     geom::Report expected;
     expected.file = name;
-    geom::analyze(scene, options.weld_tolerance, options.topology, false, expected);
+    geom::analyze(scene, po, expected);
     EXPECT_EQ(std::string(reinterpret_cast<const char*>(topology->data), topology->size), geom::report_json(expected));
   }
   if (!silhouette) return;
@@ -572,21 +578,21 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
   const auto* report = rd.find(SectionType::SilhouetteReport);
   ASSERT_NE(report, nullptr);
   EXPECT_EQ(std::string(reinterpret_cast<const char*>(report->data), report->size), r.silhouette);
-  if (options.esm) {
-    geom::EsmQuads esm = geom::build_esm_quads(welded, w.indices.data(), tc, topo, fp, options.esm_options);
+  if (po.esm) {
+    geom::EsmQuads esm = geom::build_esm_quads(welded, w.indices.data(), tc, topo, fp, po.esm_options);
     EXPECT_EQ(rd.find(SectionType::EsmQuads)->stride, 36u);
     EXPECT_TRUE(same(bytes_of(rd.find(SectionType::EsmQuads)), bytes_of(esm.quads)));
     EXPECT_TRUE(same(bytes_of(rd.find(SectionType::EsmPlanes)), bytes_of(esm.planes)));
   }
-  geom::ShadowVolume volume = geom::build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
-  if (options.volume) {
+  geom::ShadowVolume volume = geom::build_shadow_volume(welded, w.indices.data(), tc, topo, fp, po.volume_options);
+  if (po.volume) {
     EXPECT_EQ(rd.find(SectionType::VolumeSides)->stride, 32u);
     EXPECT_EQ(rd.find(SectionType::VolumeCaps)->stride, 40u);
     EXPECT_TRUE(same(bytes_of(rd.find(SectionType::VolumeSides)), bytes_of(volume.sides)));
     EXPECT_TRUE(same(bytes_of(rd.find(SectionType::VolumeCaps)), bytes_of(volume.caps)));
     EXPECT_TRUE(same(bytes_of(rd.find(SectionType::VolumePlanes)), bytes_of(volume.planes)));
   }
-  if (options.adjacency) {
+  if (po.adjacency) {
     std::vector<uint32_t> adj(geom::adjacency_index_count(tc));
     ASSERT_TRUE(geom::build_adjacency(adj.data(), w.indices.data(), tc, w.vertex_count()));
     EXPECT_TRUE(same(values<uint32_t>(rd.find(SectionType::AdjacencyIndices)), adj));
@@ -595,9 +601,11 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
     auto table = values<double>(rd.find(SectionType::Lights));
     ASSERT_EQ(table.size(), 4 * lights.size());
     for (size_t i = 0; i < lights.size(); ++i) {
-      for (int k = 0; k < 4; ++k) EXPECT_EQ(table[4 * i + k], lights[i].light[k]);
+      double h[4];
+      geom::light_homogeneous(lights[i], h);
+      for (int k = 0; k < 4; ++k) EXPECT_EQ(table[4 * i + k], h[k]);
       float local[4];
-      geom::to_local_light(fp.origin, lights[i].light, local);
+      geom::to_local_light(fp.origin, h, local);
       geom::ShadowVolume lv = geom::build_light_volume(volume, local);
       EXPECT_TRUE(same(bytes_of(rd.find(SectionType::LightSides, uint32_t(i))), bytes_of(lv.sides))) << "light " << i;
       EXPECT_TRUE(same(bytes_of(rd.find(SectionType::LightCaps, uint32_t(i))), bytes_of(lv.caps))) << "light " << i;
@@ -647,11 +655,11 @@ TEST(Bake, EveryFlagCombination) {
     o.positions = mask & 1;
     o.indices = mask & 2;
     o.weld_remap = mask & 4;
-    o.face_planes = mask & 8;
+    o.pipeline.face_planes = mask & 8;
     o.topology_report = mask & 16;
-    o.esm = mask & 32;
-    o.volume = mask & 64;
-    o.adjacency = mask & 128;
+    o.pipeline.esm = mask & 32;
+    o.pipeline.volume = mask & 64;
+    o.pipeline.adjacency = mask & 128;
     o.scene_lights = mask & 256;
     check_baked(s, o, "tetra");
     if (HasFatalFailure()) return;
@@ -661,16 +669,16 @@ TEST(Bake, EveryFlagCombination) {
 TEST(Bake, LightsGiven) {
   geom::Scene s = seamed_tetrahedron();
   geom::BakeOptions o;
-  o.lights = {{2, 3, 4, 1}, {0, 0, 1, 0}, {-1, -1, -1, 1}};
+  o.lights = lights_of({{2, 3, 4, 1}, {0, 0, 1, 0}, {-1, -1, -1, 1}});
   check_baked(s, o, "tetra");
   geom::BakeResult r = geom::bake_scene(s, "tetra", o);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_NE(r.silhouette.find("\"name\":\"--light 3\""), std::string::npos) << r.silhouette;
-  o.lights = {{0, 0, 0, 0}};
+  o.lights = lights_of({{0, 0, 0, 0}});
   r = geom::bake_scene(s, "tetra", o);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.error, "tetra: light '--light 1' is not a usable (x, y, z, w): non-finite or all zero");
-  o.lights = {{1, std::nan(""), 0, 1}};
+  o.lights = lights_of({{1, std::nan(""), 0, 1}});
   EXPECT_FALSE(geom::bake_scene(s, "tetra", o).ok);
 }
 
@@ -680,7 +688,7 @@ TEST(Bake, RandomScenesRoundTrip) {
     float offset = trial % 3 == 0 ? 0.0f : trial % 3 == 1 ? 1000.0f : -65536.0f;
     geom::Scene s = random_scene(rng, offset);
     geom::BakeOptions o;
-    if (trial % 5 == 0) o.weld_tolerance = 0.3f;
+    if (trial % 5 == 0) o.pipeline.weld_tolerance = 0.3f;
     check_baked(s, o, "random " + std::to_string(trial));
     if (HasFatalFailure()) return;
   }
@@ -721,7 +729,7 @@ const std::string kDracoBox = std::string(GEOM_TEST_DATA) + "/draco/Box/glTF/Box
 std::vector<unsigned char> read_bytes(const std::string& path) {
   std::vector<unsigned char> bytes;
   std::string error;
-  EXPECT_TRUE(geom::baked::read_file(path, bytes, error)) << path << ": " << error;
+  EXPECT_TRUE(cli::read_file(path, bytes, error)) << path << ": " << error;
   return bytes;
 }
 
@@ -746,7 +754,7 @@ CliRun geombake(const std::string& dir, const std::string& args) {
   auto slurp = [](const std::string& p) {
     std::vector<unsigned char> b;
     std::string e;
-    geom::baked::read_file(p, b, e);
+    cli::read_file(p, b, e);
     ::unlink(p.c_str());
     return std::string(b.begin(), b.end());
   };
@@ -942,7 +950,7 @@ TEST(GeombakeCli, Quake3MapFromArchive) {
   geom::ImportResult imported = geom::import_file(map);
   ASSERT_TRUE(imported.ok) << imported.error;
   geom::BakeOptions o;
-  o.lights = {{0, 0, 1, 0}};
+  o.lights = lights_of({{0, 0, 1, 0}});
   check_baked(imported.scene, o, map);
   geom::BakeResult baked = geom::bake_scene(imported.scene, "pak1-maps.pk3:maps/oa_bases3cl.bsp", o);  // the name stored
   ASSERT_TRUE(baked.ok) << baked.error;
@@ -967,12 +975,13 @@ TEST(BakeRealFile, SceneLightsOfTheDefaultScene) {
   ASSERT_TRUE(geom::serialize_baked(r.sections, bytes, error)) << error;
   Reader rd;
   ASSERT_TRUE(rd.open(bytes.data(), bytes.size())) << rd.error();
-  auto expected = geom::scene_lights(imported.scene);
+  const std::vector<geom::Light>& expected = imported.scene.lights;
   auto table = values<double>(rd.find(SectionType::Lights));
   ASSERT_EQ(table.size(), 8u);
   for (size_t i = 0; i < 2; ++i) {
-    EXPECT_EQ(std::vector<double>(table.begin() + 4 * i, table.begin() + 4 * i + 4),
-              std::vector<double>(expected[i].light, expected[i].light + 4));
+    double h[4];
+    geom::light_homogeneous(expected[i], h);
+    EXPECT_EQ(std::vector<double>(table.begin() + 4 * i, table.begin() + 4 * i + 4), std::vector<double>(h, h + 4));
     EXPECT_NE(r.silhouette.find("\"name\":\"" + expected[i].name + "\""), std::string::npos) << r.silhouette;
     EXPECT_GT(rd.find(SectionType::LightSides, uint32_t(i))->count, 0u);
   }

@@ -99,7 +99,7 @@ TEST(GlBaked, ExactVolumesOfDeclaredLights) {
 TEST(GlBaked, MissingBuffersAreNamed) {
   ASSERT_NE(context(), nullptr);
   geom::BakeOptions options;
-  options.volume = false;
+  options.pipeline.volume = false;
   options.scene_lights = false;
   const std::vector<unsigned char> bytes = baked_bytes(scene(), options);
   geom::Scene from_file;

@@ -441,7 +441,7 @@ TEST(Quake3Bsp, ReportOfRealMap) {
   ASSERT_TRUE(r.ok) << r.error;
   Report report;
   report.file = "oa_ctf2.bsp";
-  analyze(r.scene, 0.0f, {}, false, report);
+  analyze(r.scene, {}, report);
   const std::string json = report_json(report);
   EXPECT_NE(json.find("\"source_faces\":{\"polygon\":{\"faces\":1290,\"triangles\":3065},\"mesh\":{\"faces\":0,"
                       "\"triangles\":0},\"patch\":{\"faces\":42,\"triangles\":16128},\"billboard\":{\"faces\":34},"

@@ -1,5 +1,6 @@
-// Tests of the glTF 2.0 importer (libgeom/src/import_gltf.cpp) through the
-// public entry points geom::import_file / geom::import_memory.
+// Tests of the glTF 2.0 importer (libgeom/src/import_gltf*.cpp, gltf.h) through
+// the public entry points geom::import_file / geom::import_memory, and of
+// geom::input_dependencies (a .gltf's external buffers).
 //
 //  1. Sweep: every .gltf / .glb of the Khronos glTF-Validator test data loads or
 //     is refused with "FILE: ...", each within a second; the validator's own
@@ -11,7 +12,9 @@
 //  3. Draco-compressed files against their plain versions.
 //  4. The broken glTF files of Debian's assimp-testmodels.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -632,6 +635,76 @@ TEST(ImportGltf, PercentEncodedDataUri) {
   ASSERT_TRUE(base.ok) << base.error;
   EXPECT_EQ(r.scene.positions, base.scene.positions);
   EXPECT_EQ(r.scene.indices, base.scene.indices);
+}
+
+// geom::input_dependencies (a depfile's list) names exactly the files
+// import_file reads: the .gltf, then each external buffer once, percent-decoded
+// as the importer decodes it ('+' stays a '+'), no data: URI. Over random
+// buffer lists: the import succeeds with them all, and fails naming the
+// buffer's URI when any one listed file is missing.
+TEST(ImportGltf, InputDependenciesAreTheFilesTheImporterReads) {
+  const fs::path dir = fs::temp_directory_path() / ("geom_input_dependencies_" + std::to_string(::getpid()));
+  const std::vector<std::string> names = {"a.bin", "b c.bin", "plus+sign.bin", "100%.bin", "sub/d.bin",
+                                          "\xC3\xBC.bin"};
+  std::mt19937 rng(12);
+  auto encode = [&](const std::string& name) {  // ' ' and '%' always, UTF-8 all or none, others at random
+    std::string uri;
+    char hex[4];
+    const bool utf8 = rng() % 2;
+    for (unsigned char c : name) {
+      if (c == ' ' || c == '%' || (c >= 0x80 ? utf8 : c != '/' && rng() % 3 == 0)) {
+        std::snprintf(hex, sizeof hex, "%%%02X", c);
+        uri += hex;
+      } else {
+        uri += char(c);
+      }
+    }
+    return uri;
+  };
+  for (int round = 0; round < 40; ++round) {
+    fs::remove_all(dir);
+    fs::create_directories(dir / "sub");
+    Gltf g = sound_file();
+    for (const std::string& n : names) {
+      std::ofstream f(dir / n, std::ios::binary);
+      f.write(reinterpret_cast<const char*>(g.bin.data()), std::streamsize(g.bin.size()));
+    }
+    const std::string gltf = (dir / "scene.gltf").string();
+    std::vector<std::string> expected = {gltf}, uris;
+    Json doc = g.doc;
+    const int buffers = 1 + int(rng() % 5);
+    for (int b = 0; b < buffers; ++b) {
+      std::string uri = "data:application/octet-stream;base64," + base64(g.bin);
+      if (b == 0 || rng() % 4) {
+        const std::string& name = names[rng() % names.size()];
+        uri = encode(name);
+        const std::string path = dir.string() + "/" + name;
+        if (std::find(expected.begin(), expected.end(), path) == expected.end()) expected.push_back(path);
+      }
+      uris.push_back(uri);
+      doc["buffers"].push_back({{"byteLength", g.bin.size()}, {"uri", uri}});
+    }
+    std::ofstream(gltf) << doc.dump();
+    EXPECT_EQ(geom::input_dependencies(gltf), expected) << doc["buffers"].dump();
+    const geom::ImportResult all = geom::import_file(gltf);
+    ASSERT_TRUE(all.ok) << all.error;
+    for (size_t i = 1; i < expected.size(); ++i) {
+      fs::rename(expected[i], dir / "away");
+      const geom::ImportResult r = geom::import_file(gltf);
+      EXPECT_FALSE(r.ok) << expected[i];
+      EXPECT_TRUE(starts_with(r.error, gltf + ": buffer ")) << r.error;
+      fs::rename(dir / "away", expected[i]);
+    }
+  }
+  // Not a .gltf, an archive member, a .gltf that does not parse or is missing: the one file.
+  std::ofstream(dir / "broken.gltf") << "{\"buffers\": [";
+  const std::string broken = (dir / "broken.gltf").string(), missing = (dir / "missing.gltf").string();
+  EXPECT_EQ(geom::input_dependencies(broken), std::vector<std::string>{broken});
+  EXPECT_EQ(geom::input_dependencies(missing), std::vector<std::string>{missing});
+  EXPECT_EQ(geom::input_dependencies("maps.pk3:maps/a.gltf"), std::vector<std::string>{"maps.pk3"});
+  EXPECT_EQ(geom::input_dependencies("x/m.zip:a.bsp"), std::vector<std::string>{"x/m.zip"});
+  EXPECT_EQ(geom::input_dependencies("a b.obj"), std::vector<std::string>{"a b.obj"});
+  fs::remove_all(dir);
 }
 
 // Options bound the output before it is allocated; instancing is counted.

@@ -139,7 +139,7 @@ Brute brute_force(const Scene& s) {
 
 void expect_report_matches_brute_force(const Scene& s, const std::string& what) {
   Report rep;
-  analyze(s, 0.0f, TopologyOptions(), false, rep);
+  analyze(s, {}, rep);
   Brute b = brute_force(s);
   const TopologyStats& t = rep.stats;
   EXPECT_EQ(t.triangles, b.triangles) << what;
@@ -464,7 +464,7 @@ void expect_closed_cube(const ImportResult& r) {
   ASSERT_TRUE(r.ok) << r.error;
   ASSERT_EQ(r.scene.triangle_count(), 12u);
   Report rep;
-  analyze(r.scene, 0.0f, TopologyOptions(), false, rep);
+  analyze(r.scene, {}, rep);
   EXPECT_TRUE(rep.stats.closed);
   EXPECT_EQ(rep.stats.edges, 18u);
   EXPECT_EQ(rep.stats.manifold_edges, 18u);
@@ -794,7 +794,7 @@ TEST(RealFiles, WusonInFourFormatsHasTheSameTrianglesAndTopology) {
     ASSERT_TRUE(r.ok) << r.error;
     EXPECT_EQ(r.scene.triangle_count(), 3732u) << rel;
     Report rep;
-    analyze(r.scene, 0.0f, TopologyOptions(), false, rep);
+    analyze(r.scene, {}, rep);
     reports.push_back(rep);
   }
   for (size_t i = 1; i < reports.size(); ++i) {
@@ -881,7 +881,7 @@ TEST(RealFiles, InvalidAndEdgeCaseFilesLoadOrAreRefusedQuickly) {
   ImportResult wrap = import_file(kDraco + "/non_manifold_wrap.obj");
   ASSERT_TRUE(wrap.ok) << wrap.error;
   Report rep;
-  analyze(wrap.scene, 0.0f, TopologyOptions(), false, rep);
+  analyze(wrap.scene, {}, rep);
   EXPECT_GE(rep.stats.max_edge_faces, 4u);
   if (fs::exists(kOpenscad + "/testdata/stl")) {
     ImportResult blah = import_file(kOpenscad + "/testdata/stl/invalidvertex.stl");

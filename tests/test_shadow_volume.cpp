@@ -32,7 +32,7 @@
 
 #include "geom/extrude.h"
 #include "geom/import.h"
-#include "geom/silhouette.h"
+#include "geom/pipeline.h"
 #include "silhouette_fixtures.h"
 
 namespace {
@@ -507,17 +507,16 @@ TEST(ShadowVolume, PerLightVolumes) {
 }
 
 // The bundled default scene (glTF, KHR_lights_punctual point and directional
-// lights; 27 closed boxes and an open ground): bake_silhouettes emits one exact
+// lights; 27 closed boxes and an open ground): the pipeline emits one exact
 // volume per declared light, the laws hold for each, and the report names
 // what every rule saved.
 TEST(ShadowVolume, DefaultSceneLights) {
   geom::ImportResult r = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
   ASSERT_TRUE(r.ok) << r.error;
-  std::vector<geom::LightVolume> lights = geom::scene_lights(r.scene);
+  const std::vector<geom::Light>& lights = r.scene.lights;
   ASSERT_EQ(lights.size(), 2u);
-  const geom::SilhouetteBuffers sb =
-      geom::bake_silhouettes(geom::positions_of(r.scene.positions.data(), r.scene.vertex_count()),
-                             r.scene.indices.data(), r.scene.triangle_count(), lights);
+  const geom::Pipeline sb = geom::run_pipeline(geom::positions_of(r.scene.positions.data(), r.scene.vertex_count()),
+                                               r.scene.indices.data(), r.scene.triangle_count(), lights);
   const std::string report = geom::silhouette_report(sb);
   for (const char* rule : {"rule coplanar", "rule concave", "rule per-light", "per emitted edge"})
     EXPECT_NE(report.find(rule), std::string::npos) << report;
@@ -530,10 +529,12 @@ TEST(ShadowVolume, DefaultSceneLights) {
   std::mt19937 rng(3);
   for (const geom::LightVolume& l : sb.lights) {
     ASSERT_TRUE(l.volume.per_light);
-    EXPECT_GT(l.volume.stats.light_one_sided, 20u) << l.name;  // the closed boxes
-    EXPECT_LT(l.volume.stats.bytes, sb.volume.stats.bytes / 2) << l.name;
+    EXPECT_GT(l.volume.stats.light_one_sided, 20u) << l.light.name;  // the closed boxes
+    EXPECT_LT(l.volume.stats.bytes, sb.volume.stats.bytes / 2) << l.light.name;
     LawStats stats;
-    Light light{{l.light[0], l.light[1], l.light[2]}, l.light[3], "scene light " + l.name};
+    double h[4];
+    geom::light_homogeneous(l.light, h);
+    Light light{{h[0], h[1], h[2]}, h[3], "scene light " + l.light.name};
     check_laws(m, b, light, false, rng, stats, 300, &l.volume);
     EXPECT_GT(stats.shadowed, 10) << stats.checked << " checked, " << stats.excluded << " excluded";
   }

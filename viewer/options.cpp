@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli/args.h"
+#include "cli/file.h"
 #include "geom/baked_reader.h"
 #include "geom/import.h"
 
@@ -215,21 +216,14 @@ int parse_options(int argc, char** argv, Options& o) {
 namespace {
 
 bool read_input(const std::string& file, std::vector<unsigned char>& baked, geom::Scene& scene, std::string& error) {
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  unsigned char magic[8] = {};
-  if (f && std::fread(magic, 1, 8, f) == 8 && std::memcmp(magic, geom::baked::kMagic, 8) == 0) {
-    std::fseek(f, 0, SEEK_END);
-    const long size = std::ftell(f);
-    std::fseek(f, 0, SEEK_SET);
-    if (size > 0) {
-      baked.resize(size_t(size));
-      if (std::fread(baked.data(), 1, baked.size(), f) != baked.size()) baked.clear();
-    }
-    std::fclose(f);
-    if (baked.empty()) return error = file + ": cannot read the baked file", false;
+  std::vector<unsigned char> magic;
+  std::string unread;
+  if (cli::read_file(file, magic, unread, 8) && magic.size() == 8 &&
+      std::memcmp(magic.data(), geom::baked::kMagic, 8) == 0) {
+    if (!cli::read_file(file, baked, unread) || baked.empty())
+      return error = file + ": cannot read the baked file", false;
     return true;
   }
-  if (f) std::fclose(f);
   geom::ImportResult imported = geom::import_file(file);
   if (!imported.ok) return error = imported.error, false;
   for (const std::string& w : imported.scene.warnings) cli::warning("%s", w.c_str());

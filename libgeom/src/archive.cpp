@@ -13,7 +13,7 @@
 #include <unordered_map>
 
 #include "geom/import.h"
-#include "importers.h"
+#include "file_read.h"
 
 namespace geom::detail {
 namespace {

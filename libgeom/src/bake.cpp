@@ -1,6 +1,5 @@
-// The bake pipeline (geom/bake.h): Scene -> weld -> topology -> face planes ->
-// silhouette buffers -> sections. Each stage is the library's own (one
-// algorithm per file); this file only chooses, converts and lays out.
+// The bake (geom/bake.h): Scene -> the pipeline (geom/pipeline.h) -> sections.
+// This file only chooses, converts and lays out.
 #include "geom/bake.h"
 
 #include <climits>
@@ -13,12 +12,6 @@
 #include <malloc.h>
 #endif
 
-#include "geom/adjacency.h"
-#include "geom/extrude.h"
-#include "geom/halfedge.h"
-#include "geom/shadow_volume.h"
-#include "geom/silhouette.h"
-#include "geom/weld.h"
 
 namespace geom {
 namespace {
@@ -128,124 +121,94 @@ bool keep_memory_across_bakes() {
 BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOptions& options) {
   BakeResult r;
   try {
-    // The static lights: the scene's, then the caller's.
-    std::vector<LightVolume> lights;
-    if (options.scene_lights) lights = scene_lights(scene);
+    // The static lights: the scene's, then the caller's; as the lights section holds them.
+    std::vector<Light> lights;
+    if (options.scene_lights) lights = scene.lights;
     for (size_t i = 0; i < options.lights.size(); ++i) {
-      LightVolume l;
-      for (int k = 0; k < 4; ++k) l.light[k] = options.lights[i][k];
-      l.name = "--light " + std::to_string(i + 1);
-      lights.push_back(l);
+      lights.push_back(options.lights[i]);
+      if (lights.back().name.empty()) lights.back().name = "--light " + std::to_string(i + 1);
     }
-    for (const LightVolume& l : lights)
-      if (!finite4(l.light) || (l.light[0] == 0 && l.light[1] == 0 && l.light[2] == 0 && l.light[3] == 0)) {
-        r.error = name + ": light '" + l.name + "' is not a usable (x, y, z, w): non-finite or all zero";
+    std::vector<double> table(4 * lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+      double* h = &table[4 * i];
+      light_homogeneous(lights[i], h);
+      if (!finite4(h) || (h[0] == 0 && h[1] == 0 && h[2] == 0 && h[3] == 0)) {
+        r.error = name + ": light '" + lights[i].name + "' is not a usable (x, y, z, w): non-finite or all zero";
         return r;
       }
+    }
 
-    const size_t tc = scene.triangle_count();
-    const auto kept_weld =
-        std::make_shared<WeldResult>(weld(positions_of(scene.positions.data(), scene.vertex_count()),
-                                          scene.indices.data(), scene.indices.size(), options.weld_tolerance));
-    const WeldResult& w = *kept_weld;
-    const PositionSpan welded = positions_of(w.positions.data(), w.vertex_count());
-    TopologyOptions topology_options = options.topology;
-    topology_options.dihedral_angles = false;  // no section holds an angle
-    Topology topo = build_topology(welded, w.indices.data(), tc, topology_options);
-
-    // The report, field by field as geom/report.h's analyze() fills it.
+    const PipelineOptions& asked = options.pipeline;
+    PipelineOptions po = asked;
+    po.halfedge = true;  // the report's
+    po.release_early = true;
+    po.timing = false;
+    // Sections view the buffers (no copy) inside the run `kept` holds.
+    const auto kept = std::make_shared<Pipeline>(
+        run_pipeline(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
+                     scene.triangle_count(), lights, po));
+    Pipeline& p = *kept;
+    const WeldResult& w = p.weld;
+    report_of(scene, p, r.report);
     r.report.file = name;
-    r.report.stats = topo.stats;
-    r.report.halfedge = summarize_halfedges(welded, w.indices.data(), tc, topo);
-    r.report.lights = scene.lights.size();
-    r.report.source_counts = scene.source_counts;
-    r.report.warnings = scene.warnings;
-
-    const bool need_volume = options.volume || !lights.empty();
-    const bool silhouette = options.esm || options.volume || options.adjacency || !lights.empty();
-    FacePlanes fp;
-    if (options.face_planes || options.esm || need_volume)
-      fp = compute_face_planes(welded, w.indices.data(), tc, topo, options.planes);
 
     auto& s = r.sections;
     if (options.positions)
-      s.push_back(view_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions, kept_weld));
-    if (options.indices)
-      s.push_back(view_section(SectionType::Indices, Format::U32, 4, "indices", w.indices, kept_weld));
+      s.push_back(view_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions, kept));
+    if (options.indices) s.push_back(view_section(SectionType::Indices, Format::U32, 4, "indices", w.indices, kept));
     if (options.weld_remap)
-      s.push_back(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept_weld));
-    if (options.face_planes)
-      s.push_back(make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes", world_face_planes(fp)));
+      s.push_back(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept));
+    if (asked.face_planes)
+      s.push_back(
+          make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes", world_face_planes(p.planes)));
+    std::vector<float>().swap(p.planes.planes);  // no later section reads them
+    std::vector<uint32_t>().swap(p.planes.face_plane);
     if (options.topology_report) {
       std::string json = report_json(r.report);
       s.push_back(make_baked_section(SectionType::TopologyReport, Format::Utf8, 1, "topology",
                                      std::vector<char>(json.begin(), json.end())));
     }
-    if (!silhouette) {
+    if (!asked.esm && !asked.volume && !asked.adjacency && lights.empty()) {
       r.ok = true;
       return r;
     }
 
-    // The adjacency now, while the edge table is whole; then what no later
-    // stage reads goes, so the peak holds less (its section keeps its place).
-    std::vector<uint32_t> adj;
-    if (options.adjacency) {
-      adj.resize(adjacency_index_count(tc));
-      build_adjacency(adj.data(), w.indices.data(), tc, topo);
-    }
-    std::vector<uint32_t>().swap(topo.face_edges);
-    std::vector<uint32_t>().swap(topo.face_component);
-    std::vector<uint8_t>().swap(topo.face_flags);
-
     std::string js = "{";
-    if (options.esm || need_volume) {  // the buffers in the local frame
-      std::vector<double> origin(fp.origin, fp.origin + 3);
+    if (asked.esm || asked.volume || !lights.empty()) {  // the buffers in the local frame
+      std::vector<double> origin(p.planes.origin, p.planes.origin + 3);
       s.push_back(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
       js += "\"frame\":[" + json_number(origin[0]) + "," + json_number(origin[1]) + "," + json_number(origin[2]) + "],";
     }
-    if (options.esm) {
-      const auto kept =
-          std::make_shared<EsmQuads>(build_esm_quads(welded, w.indices.data(), tc, topo, fp, options.esm_options));
-      const EsmQuads& esm = *kept;
-      s.push_back(record_section(SectionType::EsmQuads, "esm_quads", esm.quads, kept));
-      s.push_back(view_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", esm.planes, kept));
-      js += "\"esm\":" + esm_json(esm.stats) + ",";
-      r.esm = esm.stats;
+    if (asked.esm) {
+      s.push_back(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept));
+      s.push_back(view_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", p.esm.planes, kept));
+      js += "\"esm\":" + esm_json(p.esm.stats) + ",";
+      r.esm = p.esm.stats;
     }
-    std::vector<double>().swap(fp.normals);  // only the ESM quads read them
-    const auto kept_volume = std::make_shared<ShadowVolume>();
-    ShadowVolume& volume = *kept_volume;
-    if (need_volume) volume = build_shadow_volume(welded, w.indices.data(), tc, topo, fp, options.volume_options);
-    if (options.volume) {
-      s.push_back(record_section(SectionType::VolumeSides, "volume_sides", volume.sides, kept_volume));
-      s.push_back(record_section(SectionType::VolumeCaps, "volume_caps", volume.caps, kept_volume));
-      s.push_back(
-          view_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", volume.planes, kept_volume));
-      js += "\"volume\":" + volume_json(volume.stats) + ",";
-      r.volume = volume.stats;
+    if (asked.volume) {
+      s.push_back(record_section(SectionType::VolumeSides, "volume_sides", p.volume.sides, kept));
+      s.push_back(record_section(SectionType::VolumeCaps, "volume_caps", p.volume.caps, kept));
+      s.push_back(view_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", p.volume.planes, kept));
+      js += "\"volume\":" + volume_json(p.volume.stats) + ",";
+      r.volume = p.volume.stats;
+    } else {
+      p.volume = ShadowVolume();  // the light volumes' source, emitted by none
     }
-    if (options.adjacency) {
-      js += "\"adjacency\":{\"indices\":" + json_uint(adj.size()) + "},";
-      s.push_back(make_baked_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", std::move(adj)));
+    if (asked.adjacency) {
+      js += "\"adjacency\":{\"indices\":" + json_uint(p.adjacency.size()) + "},";
+      s.push_back(view_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", p.adjacency, kept));
     }
-    if (!lights.empty()) {
-      std::vector<double> table;
-      for (const LightVolume& l : lights) table.insert(table.end(), l.light, l.light + 4);
-      s.push_back(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table));
-    }
+    if (!lights.empty()) s.push_back(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table));
     js += "\"lights\":[";
-    for (size_t i = 0; i < lights.size(); ++i) {
-      float local[4];
-      to_local_light(fp.origin, lights[i].light, local);
-      const auto kept = std::make_shared<ShadowVolume>(build_light_volume(volume, local));
-      const ShadowVolume& lv = *kept;
+    for (size_t i = 0; i < p.lights.size(); ++i) {
+      const ShadowVolume& lv = p.lights[i].volume;
       const uint32_t item = uint32_t(i);
+      const double* h = &table[4 * i];
       s.push_back(record_section(SectionType::LightSides, "light_sides", lv.sides, kept, item));
       s.push_back(record_section(SectionType::LightCaps, "light_caps", lv.caps, kept, item));
       s.push_back(view_section(SectionType::LightPlanes, Format::F32x4, 16, "light_planes", lv.planes, kept, item));
       js += std::string(i ? "," : "") + "{\"name\":" + json_string(lights[i].name) + ",\"light\":[" +
-            json_number(lights[i].light[0]) + "," + json_number(lights[i].light[1]) + "," +
-            json_number(lights[i].light[2]) + "," + json_number(lights[i].light[3]) +
+            json_number(h[0]) + "," + json_number(h[1]) + "," + json_number(h[2]) + "," + json_number(h[3]) +
             "],\"sides\":" + json_uint(lv.sides.size()) + ",\"caps\":" + json_uint(lv.caps.size()) +
             ",\"bytes\":" + json_uint(lv.stats.bytes) + "}";
     }

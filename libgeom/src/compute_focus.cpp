@@ -48,11 +48,7 @@ const char* focus_fallback_name(FocusFallback f) {
 
 bool compute_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene, const FocusOptions& options,
                    FocusResult& out) {
-  return compute_focus_staged(camera, light, scene, options, out, nullptr);
-}
-
-bool focus::compute_focus_staged(const CameraMatrices& camera, const Light& light, const FocusBox& scene,
-                                 const FocusOptions& options, FocusResult& out, StageTimes* times) {
+  StageTimes* times = options.stage_times;
   using Clock = std::chrono::steady_clock;
   Clock::time_point mark = times ? Clock::now() : Clock::time_point();
   // Adds the time since the last mark to `slot`.

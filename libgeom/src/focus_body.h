@@ -1,6 +1,5 @@
 // focus_body.h (private): the convex-polytope steps of the focus body H
-// (seed 002_147d3d07b97c563e.txt, Sect. 4.1), shared by compute_focus.cpp and
-// the benchmark, which times each step apart.
+// (seed 002_147d3d07b97c563e.txt, Sect. 4.1), used by compute_focus.cpp.
 //
 // A Polytope is a convex body as a list of convex polygons (flat vertex
 // coordinates + a vertex count per polygon), counter-clockwise seen from
@@ -16,15 +15,7 @@
 namespace geom {
 namespace focus {
 
-// Seconds spent in each stage of compute_focus, accumulated (for the benchmark).
-struct StageTimes {
-  double setup = 0;      // inputs checked, S and L as half-spaces
-  double receivers = 0;  // R = V n S n L: plane clips of the view frustum
-  double hull = 0;       // CGAL convex hull of R and the light
-  double clip = 0;       // the hull cut by S and L
-  double faces = 0;      // H's faces for the output: CGAL hull of H's vertices, coplanar merge
-  double matrix = 0;     // the light's kind, the shift, the matrix of the method
-};
+using StageTimes = FocusStageTimes;  // geom/focus.h
 
 struct Polytope {
   std::vector<V3> pts;
@@ -83,11 +74,6 @@ void focus_hull(const Polytope& receivers, V3 light, bool directional, double re
 bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
                      size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
                      std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times = nullptr);
-
-// compute_focus (geom/focus.h), with the time of each stage added to `times`
-// when it is not null.
-bool compute_focus_staged(const CameraMatrices& camera, const Light& light, const FocusBox& scene,
-                          const FocusOptions& options, FocusResult& out, StageTimes* times);
 
 }  // namespace focus
 }  // namespace geom

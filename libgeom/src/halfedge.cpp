@@ -15,6 +15,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Utils/Property.hh>
+#include <algorithm>
 #include <mutex>
 #include <vector>
 
@@ -127,8 +128,9 @@ bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_c
 // fan to the other. So each face costs a constant, whatever the valences, and
 // the next / prev links, the vertices' half-edges and the refusals are
 // OpenMesh's own (tests/test_halfedge.cpp holds them equal on every mesh).
-HalfedgeSummary replay_add_face(const uint32_t* indices, size_t triangle_count, size_t vertex_count,
+HalfedgeSummary replay_add_face(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                 const Topology& t) {
+  const size_t vertex_count = positions.size();
   constexpr uint32_t kNone = Topology::kNone;
   const size_t hn = 2 * t.edges.size();
   std::vector<uint32_t> next(hn, kNone), prev(hn, kNone);
@@ -140,6 +142,10 @@ HalfedgeSummary replay_add_face(const uint32_t* indices, size_t triangle_count, 
   HalfedgeSummary s;
   uint64_t steps = 0;
   auto boundary_vertex = [&](uint32_t v) { return out[v] == kNone || !face[out[v]]; };
+  // A link the replay needs and does not have would mean the fans' ends went
+  // wrong: never seen (the tests replay every mesh they have), but then
+  // OpenMesh itself answers rather than anything being read out of bounds.
+  auto lost = [&](uint32_t h) { return h >= hn; };
   for (size_t f = 0; f < triangle_count; ++f) {
     const uint32_t* v = indices + 3 * f;
     if (t.face_flags[f] & kFaceCollapsed) {
@@ -162,6 +168,8 @@ HalfedgeSummary replay_add_face(const uint32_t* indices, size_t triangle_count, 
       if (fresh[i] || fresh[ii] || next[he[i]] == he[ii]) continue;
       const uint32_t inner_prev = he[i], inner_next = he[ii];
       const uint32_t boundary_prev = fan_end[inner_next];  // the free gap: after inner_next's fan
+      if (lost(boundary_prev) || lost(next[boundary_prev]) || lost(next[inner_prev]) || lost(prev[inner_next]))
+        return summarize_halfedges(positions, indices, triangle_count);
       if (boundary_prev == inner_prev) {
         ok = false;  // "patch re-linking failed": the face would close a fan beside others
         break;
@@ -183,6 +191,11 @@ HalfedgeSummary replay_add_face(const uint32_t* indices, size_t triangle_count, 
       const uint32_t vh = v[ii], inner_prev = he[i], inner_next = he[ii];
       const uint32_t outer_prev = inner_next ^ 1u, outer_next = inner_prev ^ 1u;
       const int id = (fresh[i] ? 1 : 0) | (fresh[ii] ? 2 : 0);
+      const uint32_t needed = id == 1   ? std::max(prev[inner_next], fan_end[inner_next])
+                              : id == 2 ? std::max(next[inner_prev], fan_start[inner_prev])
+                              : id == 3 ? (out[vh] == kNone ? 0 : prev[out[vh]])
+                                        : std::max(fan_start[inner_prev], fan_end[inner_next]);
+      if (lost(needed)) return summarize_halfedges(positions, indices, triangle_count);
       if (id == 1) {  // prev new, next old: the face starts inner_next's fan anew
         cache[cached++] = {prev[inner_next], outer_next};
         out[vh] = outer_next;
@@ -250,7 +263,7 @@ bool halfedges_from_edge_table(const uint32_t* indices, size_t triangle_count, s
 HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                     const Topology& t) {
   if (!halfedges_from_edge_table(indices, triangle_count, positions.size(), t))
-    return replay_add_face(indices, triangle_count, positions.size(), t);
+    return replay_add_face(positions, indices, triangle_count, t);
   HalfedgeSummary s;
   s.skipped_faces = t.stats.collapsed_triangles;
   s.added_faces = triangle_count - s.skipped_faces;

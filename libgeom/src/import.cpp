@@ -4,28 +4,17 @@
 // per triangle, limits respected.
 #include "geom/import.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iterator>
 
-#include "file_kind.h"
+#include "file_read.h"
 #include "importers.h"
 #include "uri.h"
 
 namespace geom {
-
-uint64_t detail::physical_memory_bytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
-  return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : 0;
-}
 
 namespace {
 
@@ -51,60 +40,6 @@ std::string lower_extension(const std::string& name) {
 std::string directory_of(const std::string& path) {
   size_t slash = path.find_last_of("/\\");
   return slash == std::string::npos ? std::string("./") : path.substr(0, slash + 1);  // "" would mean no folder
-}
-
-// Reads a regular file whole. Anything else (a FIFO, a device, a directory) is
-// refused by name before it is opened, and again by its descriptor after (it
-// may have been swapped in between); a file larger than the limit, or than this
-// machine's memory, is refused before anything is allocated.
-bool read_whole_file(const std::string& path, std::vector<unsigned char>& bytes, uint64_t max_bytes,
-                     std::string& error) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) {
-    error = std::string("cannot open file: ") + std::strerror(errno);
-    return false;
-  }
-  if (!S_ISREG(st.st_mode)) {
-    error = detail::file_kind(st.st_mode) + ", not a regular file: not read";
-    return false;
-  }
-  int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
-  if (fd < 0) {
-    error = std::string("cannot open file: ") + std::strerror(errno);
-    return false;
-  }
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    error = "not a regular file: not read";
-    return false;
-  }
-  const uint64_t size = uint64_t(st.st_size);
-  if (max_bytes && size > max_bytes) {
-    error = "file is " + std::to_string(size) + " bytes, over the limit of " + std::to_string(max_bytes);
-    return false;
-  }
-  const uint64_t memory = detail::physical_memory_bytes();
-  if (memory && size > memory) {
-    error = "file is " + std::to_string(size) + " bytes, more than this machine's memory (" + std::to_string(memory) +
-            " bytes)";
-    return false;
-  }
-  bytes.resize(size_t(size));
-  size_t got = 0;
-  while (got < bytes.size()) {
-    ssize_t n = ::read(fd, bytes.data() + got, std::min<size_t>(bytes.size() - got, size_t(1) << 30));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    got += size_t(n);
-  }
-  if (got != bytes.size()) {
-    error = "cannot read file (it shrank while being read?)";
-    return false;
-  }
-  return true;
 }
 
 // The checks every importer's output must pass before anyone uses it.
@@ -228,7 +163,7 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
     }
     return import_memory(path, bytes.data(), bytes.size(), options, "");
   }
-  if (!read_whole_file(path, bytes, options.max_bytes, error)) {
+  if (!detail::read_whole_file(path, bytes, options.max_bytes, error)) {
     result.error = path + ": " + error;
     return result;
   }
@@ -249,7 +184,7 @@ std::vector<std::string> input_dependencies(const std::string& input) {
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   std::vector<unsigned char> bytes;
   std::string error;
-  if (ext != ".gltf" || !read_whole_file(input, bytes, 0, error)) return deps;
+  if (ext != ".gltf" || !detail::read_whole_file(input, bytes, 0, error)) return deps;
   const size_t slash = input.find_last_of('/');
   const std::string dir = slash == std::string::npos ? "" : input.substr(0, slash + 1);
   for (const std::string& uri : detail::gltf_buffer_uris(bytes.data(), bytes.size())) {

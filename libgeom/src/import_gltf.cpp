@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "file_read.h"
 #include "gltf.h"
 #include "importers.h"
 #include "uri.h"
@@ -227,12 +228,8 @@ bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::strin
     if (err) *err = "file over the size limit";
     return false;
   }
-  FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return false;
-  out->resize(size_t(size));
-  bool ok = size == 0 || std::fread(out->data(), 1, out->size(), f) == out->size();
-  std::fclose(f);
-  return ok;
+  std::string error;  // a file changed since the checks: tinygltf reports the read as failed
+  return read_whole_file(path, *out, limit, error);
 }
 bool fs_write(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
@@ -311,18 +308,12 @@ Model plain_model(tinygltf::Model& t) {
   for (const tinygltf::BufferView& v : t.bufferViews)
     m.bufferViews.push_back({v.buffer, v.byteOffset, v.byteLength, v.byteStride});
   for (const tinygltf::Accessor& a : t.accessors) {
-    Accessor b;
-    b.bufferView = a.bufferView;
-    b.byteOffset = a.byteOffset;
-    b.normalized = a.normalized;
-    b.componentType = a.componentType;
-    b.count = a.count;
-    b.type = a.type;
-    b.sparse.count = a.sparse.count;
-    b.sparse.isSparse = a.sparse.isSparse;
-    b.sparse.indices = {a.sparse.indices.byteOffset, a.sparse.indices.bufferView, a.sparse.indices.componentType};
-    b.sparse.values = {a.sparse.values.bufferView, a.sparse.values.byteOffset};
-    m.accessors.push_back(b);
+    const auto& sp = a.sparse;
+    const Sparse sparse{sp.count,
+                        sp.isSparse,
+                        {sp.indices.byteOffset, sp.indices.bufferView, sp.indices.componentType},
+                        {sp.values.bufferView, sp.values.byteOffset}};
+    m.accessors.push_back({a.bufferView, a.byteOffset, a.normalized, a.componentType, a.count, a.type, sparse});
   }
   for (const tinygltf::Mesh& mesh : t.meshes) {
     Mesh out;
@@ -330,21 +321,13 @@ Model plain_model(tinygltf::Model& t) {
     m.meshes.push_back(std::move(out));
   }
   for (const tinygltf::Node& n : t.nodes) {
-    Node out;
-    out.mesh = n.mesh;
-    out.children = n.children;
-    out.rotation = n.rotation;
-    out.scale = n.scale;
-    out.translation = n.translation;
-    out.matrix = n.matrix;
+    NodeLight light;
     auto ext = n.extensions.find("KHR_lights_punctual");
     if (ext != n.extensions.end() && ext->second.IsObject()) {
-      out.light.present = true;
       const tinygltf::Value& li = ext->second.Get("light");
-      out.light.is_int = li.IsInt();
-      if (out.light.is_int) out.light.index = li.Get<int>();
+      light = {true, li.IsInt(), li.IsInt() ? li.Get<int>() : 0};
     }
-    m.nodes.push_back(std::move(out));
+    m.nodes.push_back({n.mesh, n.children, n.rotation, n.scale, n.translation, n.matrix, light});
   }
   for (const tinygltf::Scene& s : t.scenes) m.scenes.push_back({s.nodes});
   m.defaultScene = t.defaultScene;

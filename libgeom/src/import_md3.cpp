@@ -23,6 +23,7 @@
 #include <cstring>
 #include <string>
 
+#include "file_read.h"
 #include "importers.h"
 
 namespace geom::detail {

@@ -39,10 +39,6 @@ std::vector<std::string> gltf_buffer_uris(const unsigned char* data, size_t size
 // checked by instantiation i: 0 portable / 1 deprecated scheme on the position
 // corner table, 2 / 3 on an attribute corner table.
 std::string draco_guard_refusal();
-
-// This machine's physical memory in bytes (0 if unknown): no input or archive
-// member larger than it is read.
-uint64_t physical_memory_bytes();
 uint64_t draco_guard_checks(int which);
 
 }  // namespace geom::detail

@@ -2,12 +2,10 @@
 #include "geom/report.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <map>
 
-#include "geom/weld.h"
 
 namespace geom {
 namespace {
@@ -101,27 +99,23 @@ uint64_t peak_rss_bytes() {
   return kb * 1024;
 }
 
-void analyze(const Scene& scene, float weld_tolerance, const TopologyOptions& options, bool timing, Report& report) {
-  using clock = std::chrono::steady_clock;
-  auto t0 = clock::now();
-  WeldResult w = weld(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                      scene.indices.size(), weld_tolerance);
-  auto t1 = clock::now();
-  if (timing) report.stages.push_back({"weld", std::chrono::duration<double>(t1 - t0).count(), peak_rss_bytes()});
-  TopologyOptions no_angles = options;
-  no_angles.dihedral_angles = false;  // the report shows no angle
-  Topology t = build_topology(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
-                              scene.triangle_count(), no_angles);
-  auto t2 = clock::now();
-  if (timing) report.stages.push_back({"topology", std::chrono::duration<double>(t2 - t1).count(), peak_rss_bytes()});
-  report.stats = t.stats;
-  report.halfedge = summarize_halfedges(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(),
-                                        scene.triangle_count(), t);
-  if (timing)
-    report.stages.push_back({"halfedge", std::chrono::duration<double>(clock::now() - t2).count(), peak_rss_bytes()});
+void analyze(const Scene& scene, const PipelineOptions& options, Report& report) {
+  PipelineOptions o = options;
+  o.halfedge = true;
+  o.face_planes = o.esm = o.volume = o.adjacency = false;
+  o.release_early = true;
+  report_of(scene, run_pipeline(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
+                                scene.triangle_count(), {}, o),
+            report);
+}
+
+void report_of(const Scene& scene, const Pipeline& run, Report& report) {
+  report.stats = run.topology.stats;
+  report.halfedge = run.halfedge;
   report.lights = scene.lights.size();
   report.source_counts = scene.source_counts;
   report.warnings = scene.warnings;
+  report.stages.insert(report.stages.end(), run.stages.begin(), run.stages.end());
 }
 
 std::string report_json(const Report& r) {

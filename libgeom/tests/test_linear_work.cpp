@@ -104,7 +104,7 @@ Work work_of(const geom::Scene& s) {
   w.bake = geom::detail::work_steps;
   geom::detail::work_steps = 0;
   geom::Report report;
-  geom::analyze(s, 0, {}, false, report);
+  geom::analyze(s, {}, report);
   w.info = geom::detail::work_steps;
   return w;
 }

@@ -1,5 +1,5 @@
 // casters.cpp: the casters' silhouette buffers on the GPU. An in-process bake
-// (geom/silhouette.h, one caster per glTF mesh instance) and a baked container
+// (geom/pipeline.h, one caster per glTF mesh instance) and a baked container
 // (geom/baked_reader.h, one caster) both become a BakedView, and every
 // BakedView is uploaded by upload_caster, after its indices are checked (a
 // baked file is untrusted input).
@@ -12,7 +12,7 @@
 
 namespace render {
 
-BakedView baked_view(const geom::SilhouetteBuffers& b) {
+BakedView baked_view(const geom::Pipeline& b) {
   BakedView v;
   for (int k = 0; k < 3; ++k) v.origin[k] = b.planes.origin[k];
   v.welded = b.weld.positions.data(), v.welded_count = b.weld.vertex_count();
@@ -24,14 +24,17 @@ BakedView baked_view(const geom::SilhouetteBuffers& b) {
   v.volume_planes = b.volume.planes.data(), v.volume_plane_count = b.volume.planes.size() / 4;
   v.indices = b.weld.indices.data(), v.triangle_count = b.weld.indices.size() / 3;
   for (const geom::LightVolume& lv : b.lights)
-    if (lv.volume.per_light)
-      v.light_volumes.push_back({{lv.light[0], lv.light[1], lv.light[2], lv.light[3]},
-                                 lv.volume.sides.data(),
-                                 lv.volume.sides.size(),
-                                 lv.volume.caps.data(),
-                                 lv.volume.caps.size(),
-                                 lv.volume.planes.data(),
-                                 lv.volume.planes.size() / 4});
+    if (lv.volume.per_light) {
+      BakedView::LightVolume l{{},
+                               lv.volume.sides.data(),
+                               lv.volume.sides.size(),
+                               lv.volume.caps.data(),
+                               lv.volume.caps.size(),
+                               lv.volume.planes.data(),
+                               lv.volume.planes.size() / 4};
+      geom::light_homogeneous(lv.light, l.light);
+      v.light_volumes.push_back(l);
+    }
   return v;
 }
 
@@ -258,8 +261,10 @@ bool build_casters(State& s, std::string& error) {
                            scene.positions.begin() + 3 * size_t(v) + 3);
         indices.push_back(it->second);
       }
-    const geom::SilhouetteBuffers b = geom::bake_silhouettes(geom::positions_of(positions.data(), positions.size() / 3),
-                                                             indices.data(), tris.size(), geom::scene_lights(scene));
+    geom::PipelineOptions options;
+    options.release_early = true;  // the casters read no topology
+    const geom::Pipeline b = geom::run_pipeline(geom::positions_of(positions.data(), positions.size() / 3),
+                                                indices.data(), tris.size(), scene.lights, options);
     if (b.adjacency.size() != 6 * tris.size() || b.weld.indices.size() != 3 * tris.size()) {
       error = "the silhouette bake failed";
       return false;

@@ -10,7 +10,7 @@
 
 namespace render {
 
-// The static buffers of one caster (geom/silhouette.h), in its local frame,
+// The static buffers of one caster (geom/pipeline.h), in its local frame,
 // uploaded from a BakedView (casters.cpp).
 struct Caster {
   glm::vec3 lo{0}, hi{0};  // world bounding box

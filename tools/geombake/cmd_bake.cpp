@@ -49,6 +49,7 @@
 #include "geombake/bake_output.h"
 #include "geombake/command.h"
 #include "geombake/fault.h"
+#include "geombake/flags.h"
 #include "geombake/inputs.h"
 #include "geombake/names.h"
 #include "geombake/tree.h"
@@ -88,7 +89,8 @@ const char* kBakeHelp =
     "  --one-sided-closed  classic one-sided volumes for closed components (lights outside them only)\n"
     "  --no-adjacency      omit the triangles-with-adjacency index buffer\n"
     "  --light X,Y,Z,W     also bake the exact shadow volume of this static light (repeatable;\n"
-    "                      W = 1 a point, W = 0 a direction towards X,Y,Z; input coordinates)\n"
+    "                      W = 1 a point, W = 0 a direction towards X,Y,Z, other W the point\n"
+    "                      X/W,Y/W,Z/W; input coordinates)\n"
     "  --no-scene-lights   no exact volumes for the file's KHR_lights_punctual lights\n"
     "  --weld-tolerance T  merge vertices closer than T (default 0: exact positions)\n"
     "  --coplanar-degrees D  normals closer than D degrees make a coplanar edge (default 0.01)\n"
@@ -322,14 +324,14 @@ void print_verbose(const Job& job, const geom::BakeOptions& options) {
                 geom::baked::format_name(s.format), (unsigned long long)s.count, s.stride, (unsigned long long)s.bytes);
   const geom::EsmStats& e = job.result.esm;
   const geom::ShadowVolumeStats& sv = job.result.volume;
-  if (options.esm)
+  if (options.pipeline.esm)
     std::printf(
         "  esm         %llu quads on %llu of %llu candidate edges (%llu coplanar, %llu concave skipped), "
         "%llu bytes against %llu naive\n",
         (unsigned long long)e.quads, (unsigned long long)e.emitted_edges, (unsigned long long)e.candidate_edges,
         (unsigned long long)e.skipped_coplanar, (unsigned long long)e.skipped_concave, (unsigned long long)e.bytes,
         (unsigned long long)e.naive_bytes);
-  if (options.volume)
+  if (options.pipeline.volume)
     std::printf("  volume      %llu sides, %llu caps (%llu coplanar edges skipped), %llu bytes against %llu naive\n",
                 (unsigned long long)sv.sides, (unsigned long long)sv.caps, (unsigned long long)sv.skipped_coplanar,
                 (unsigned long long)sv.bytes, (unsigned long long)sv.naive_bytes);
@@ -355,12 +357,13 @@ std::vector<std::string> split_jobs_flag(const std::vector<std::string>& argv) {
 }
 
 int run_bake(const std::vector<std::string>& argv) {
+  constexpr unsigned kShared = kImportFlags | kPipelineFlags | kLimitFlags;
   cli::Args args(split_jobs_flag(argv),
-                 {"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
-                  "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights",
-                  "--one-sided-closed", "-q", "--quiet", "--force", "--allow-outside-uris"},
-                 {"-o", "-j", "--depfile", "--light", "--weld-tolerance", "--coplanar-degrees", "--patch-level",
-                  "--md3-frame", "--max-triangles", "--max-memory", "--timeout", "--list", "-r"});
+                 with_shared_flags({"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap",
+                                    "--no-planes", "--no-topology", "--no-esm", "--no-volume", "--no-adjacency",
+                                    "--no-scene-lights", "--one-sided-closed", "-q", "--quiet", "--force"},
+                                   kShared, false),
+                 with_shared_flags({"-o", "-j", "--depfile", "--light", "--list", "-r"}, kShared, true));
   if (args.has("--help") || args.has("-h")) {
     std::printf("geombake %s\n", GEOM_VERSION);
     std::fputs(kBakeHelp, stdout);
@@ -371,39 +374,24 @@ int run_bake(const std::vector<std::string>& argv) {
     return 2;
   }
   geom::keep_memory_across_bakes();  // each input reuses the pages of the ones before
-  geom::ImportOptions import_options;
-  geom::BakeOptions options;
+  SharedFlags shared;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  double timeout = 0;
-  if (!parse_number(args, "--weld-tolerance", options.weld_tolerance) ||
-      !parse_number(args, "--coplanar-degrees", options.planes.coplanar_degrees) ||
-      !parse_number(args, "--patch-level", import_options.patch_level) ||
-      !parse_number(args, "--md3-frame", import_options.md3_frame) ||
-      !parse_number(args, "--max-triangles", import_options.max_triangles) || !parse_number(args, "-j", threads) ||
-      !parse_number(args, "--timeout", timeout))
-    return 2;
-  uint64_t max_memory = 0;
-  if (args.has("--max-memory")) {
-    if (!parse_bytes(args.get("--max-memory"), max_memory) || max_memory == 0) {
-      std::fprintf(stderr, "Error: option --max-memory: '%s' is not a byte count (N, NK, NM or NG)\n",
-                   args.get("--max-memory").c_str());
-      return 2;
-    }
-    import_options.max_bytes = max_memory;
-  }
-  import_options.allow_outside_uris = args.has("--allow-outside-uris");
-  if (max_memory || timeout > 0) enable_budgets();  // real accounting; cancellation of abandoned work
+  if (!parse_shared_flags(args, kShared, shared) || !parse_number(args, "-j", threads)) return 2;
+  const geom::ImportOptions& import_options = shared.import;
+  const uint64_t max_memory = shared.max_memory;
+  const double timeout = shared.timeout;
+  geom::BakeOptions options;
+  options.pipeline = shared.pipeline;
   options.positions = !args.has("--no-positions");
   options.indices = !args.has("--no-indices");
   options.weld_remap = !args.has("--no-remap");
-  options.face_planes = !args.has("--no-planes");
+  options.pipeline.face_planes = !args.has("--no-planes");
   options.topology_report = !args.has("--no-topology");
-  options.esm = !args.has("--no-esm");
-  options.volume = !args.has("--no-volume");
-  options.adjacency = !args.has("--no-adjacency");
-  options.volume_options.one_sided_closed = args.has("--one-sided-closed");
+  options.pipeline.esm = !args.has("--no-esm");
+  options.pipeline.volume = !args.has("--no-volume");
+  options.pipeline.adjacency = !args.has("--no-adjacency");
+  options.pipeline.volume_options.one_sided_closed = args.has("--one-sided-closed");
   options.scene_lights = !args.has("--no-scene-lights");
-  options.topology.coplanar_degrees = options.planes.coplanar_degrees;
   for (const std::string& text : args.all("--light")) {
     float l[4];
     if (!cli::parse_floats(text, 4, l) || !std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) ||
@@ -411,7 +399,8 @@ int run_bake(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "Error: option --light: '%s' is not X,Y,Z,W (finite, not all zero)\n", text.c_str());
       return 2;
     }
-    options.lights.push_back({l[0], l[1], l[2], l[3]});
+    const double h[4] = {l[0], l[1], l[2], l[3]};
+    options.lights.push_back(geom::light_from_homogeneous(h));
   }
 
   std::vector<std::string> named = args.positional();

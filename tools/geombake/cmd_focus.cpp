@@ -11,13 +11,13 @@
 // Bad JSON, a missing key or an invalid frame: `Error: FILE: ...`, exit 1.
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "cli/args.h"
+#include "cli/file.h"
 #include "geom/focus.h"
 #include "geombake/command.h"
 
@@ -79,13 +79,13 @@ int run_focus(const std::vector<std::string>& argv) {
     return 2;
   }
   const std::string& file = args.positional()[0];
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    std::fprintf(stderr, "Error: %s: cannot open\n", file.c_str());
+  std::string text, problem;
+  if (!cli::read_file(file, text, problem)) {
+    std::fprintf(stderr, "Error: %s: %s\n", file.c_str(), problem.c_str());
     return 1;
   }
   try {
-    Json frame = Json::parse(in);  // throws on bad JSON
+    Json frame = Json::parse(text);  // throws on bad JSON
     const Json& cam = member(frame, "frame", "camera");
     double eye[3], target[3], up[3];
     vec3(cam, "camera", "eye", eye);

@@ -12,6 +12,7 @@
 #include "geom/report.h"
 #include "geombake/command.h"
 #include "geombake/fault.h"
+#include "geombake/flags.h"
 #include "geombake/inputs.h"
 
 namespace geombake {
@@ -35,9 +36,9 @@ const char* kInfoHelp =
     "  --allow-outside-uris  read glTF buffers outside the asset's folder too\n";
 
 int run_info(const std::vector<std::string>& argv) {
-  cli::Args args(argv, {"--json", "-v", "--help", "-h", "--allow-outside-uris"},
-                 {"-o", "--weld-tolerance", "--coplanar-degrees", "--patch-level", "--md3-frame", "--max-triangles",
-                  "--max-memory", "--timeout"});
+  constexpr unsigned kShared = kImportFlags | kPipelineFlags | kLimitFlags;
+  cli::Args args(argv, with_shared_flags({"--json", "-v", "--help", "-h"}, kShared, false),
+                 with_shared_flags({"-o"}, kShared, true));
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kInfoHelp, stdout);
     return 0;
@@ -46,27 +47,11 @@ int run_info(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "Error: %s\n%s", args.error().c_str(), kInfoHelp);
     return 2;
   }
-  geom::ImportOptions options;
-  float tolerance = 0;
-  geom::TopologyOptions topo;
-  double timeout = 0;
-  if (!parse_number(args, "--weld-tolerance", tolerance) ||
-      !parse_number(args, "--coplanar-degrees", topo.coplanar_degrees) ||
-      !parse_number(args, "--patch-level", options.patch_level) ||
-      !parse_number(args, "--md3-frame", options.md3_frame) ||
-      !parse_number(args, "--max-triangles", options.max_triangles) || !parse_number(args, "--timeout", timeout))
-    return 2;
-  uint64_t max_memory = 0;
-  if (args.has("--max-memory")) {
-    if (!parse_bytes(args.get("--max-memory"), max_memory) || max_memory == 0) {
-      std::fprintf(stderr, "Error: option --max-memory: '%s' is not a byte count (N, NK, NM or NG)\n",
-                   args.get("--max-memory").c_str());
-      return 2;
-    }
-    options.max_bytes = max_memory;
-  }
-  options.allow_outside_uris = args.has("--allow-outside-uris");
-  if (max_memory || timeout > 0) enable_budgets();
+  SharedFlags shared;
+  if (!parse_shared_flags(args, kShared, shared)) return 2;
+  const geom::ImportOptions& options = shared.import;
+  const uint64_t max_memory = shared.max_memory;
+  const double timeout = shared.timeout;
   std::vector<std::string> inputs;
   if (!expand_inputs(args.positional(), inputs)) return 2;
   if (inputs.empty()) {
@@ -74,6 +59,8 @@ int run_info(const std::vector<std::string>& argv) {
     return 2;
   }
   const bool json = args.has("--json"), verbose = args.has("-v");
+  geom::PipelineOptions pipeline = shared.pipeline;
+  pipeline.timing = verbose;
   std::string out;
   int failed = 0;
   bool any_timed_out = false;
@@ -94,7 +81,7 @@ int run_info(const std::vector<std::string>& argv) {
             report.stages.push_back({"import",
                                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                                      geom::peak_rss_bytes()});
-          geom::analyze(imported.scene, tolerance, topo, verbose, report);
+          geom::analyze(imported.scene, pipeline, report);
           *warnings = report.warnings;
           *text = json ? geom::report_json(report) + "\n" : geom::report_text(report);
           return std::string();

@@ -10,8 +10,9 @@
 #include "geom/atomic_file.h"
 #include "geom/extrude.h"
 #include "geom/import.h"
-#include "geom/silhouette.h"
+#include "geom/pipeline.h"
 #include "geombake/command.h"
+#include "geombake/flags.h"
 #include "geombake/inputs.h"
 
 namespace geombake {
@@ -32,12 +33,13 @@ const char* kVolumeHelp =
     "  --no-caps             sides only (what depth-pass draws; not a closed mesh)\n"
     "  --weld-tolerance T    merge vertices closer than T (default 0: exact positions)\n"
     "  -v                    what each rule saved, on stderr\n"
-    "  --patch-level N, --md3-frame N, --max-triangles N  as for `geombake info`\n";
+    "  --coplanar-degrees D, --patch-level N, --md3-frame N, --max-triangles N,\n"
+    "  --allow-outside-uris  as for `geombake info`\n";
 
 int run_volume(const std::vector<std::string>& argv) {
-  cli::Args args(
-      argv, {"-v", "--help", "-h", "--no-caps"},
-      {"-o", "--light", "--extrude-distance", "--weld-tolerance", "--patch-level", "--md3-frame", "--max-triangles"});
+  constexpr unsigned kShared = kImportFlags | kPipelineFlags;
+  cli::Args args(argv, with_shared_flags({"-v", "--help", "-h", "--no-caps"}, kShared, false),
+                 with_shared_flags({"-o", "--light", "--extrude-distance"}, kShared, true));
   if (args.has("--help") || args.has("-h")) {
     std::fputs(kVolumeHelp, stdout);
     return 0;
@@ -64,21 +66,16 @@ int run_volume(const std::vector<std::string>& argv) {
                  args.get("--light").c_str());
     return 2;
   }
-  geom::ImportOptions options;
-  float tolerance = 0;
+  SharedFlags shared;
   double distance = -1;
-  if (!parse_number(args, "--weld-tolerance", tolerance) || !parse_number(args, "--patch-level", options.patch_level) ||
-      !parse_number(args, "--md3-frame", options.md3_frame) ||
-      !parse_number(args, "--max-triangles", options.max_triangles) ||
-      !parse_number(args, "--extrude-distance", distance))
-    return 2;
+  if (!parse_shared_flags(args, kShared, shared) || !parse_number(args, "--extrude-distance", distance)) return 2;
   if (args.has("--extrude-distance") && !std::isfinite(distance)) {
     std::fprintf(stderr, "Error: option --extrude-distance: not a finite number\n");
     return 2;
   }
 
   const std::string& input = args.positional()[0];
-  geom::ImportResult imported = geom::import_file(input, options);
+  geom::ImportResult imported = geom::import_file(input, shared.import);
   if (!imported.ok) {
     std::fprintf(stderr, "Error: %s\n", imported.error.c_str());
     return 1;
@@ -88,15 +85,15 @@ int run_volume(const std::vector<std::string>& argv) {
   if (scene.triangle_count() == 0)
     std::fprintf(stderr, "Warning: %s: no triangles, the volume is empty\n", input.c_str());
 
-  geom::SilhouetteOptions so;
-  so.weld_tolerance = tolerance;
-  so.esm_quads = false;
-  so.adjacency = false;
-  geom::LightVolume light;
-  for (int k = 0; k < 4; ++k) light.light[k] = lf[k];
+  geom::PipelineOptions po = shared.pipeline;
+  po.esm = false;
+  po.adjacency = false;
+  po.release_early = true;
+  const double h[4] = {lf[0], lf[1], lf[2], lf[3]};
+  geom::Light light = geom::light_from_homogeneous(h);
   light.name = "--light";
-  geom::SilhouetteBuffers b = geom::bake_silhouettes(geom::positions_of(scene.positions.data(), scene.vertex_count()),
-                                                     scene.indices.data(), scene.triangle_count(), {light}, so);
+  const geom::Pipeline b = geom::run_pipeline(geom::positions_of(scene.positions.data(), scene.vertex_count()),
+                                              scene.indices.data(), scene.triangle_count(), {light}, po);
 
   double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (size_t i = 0; i < scene.indices.size(); ++i)
@@ -112,8 +109,10 @@ int run_volume(const std::vector<std::string>& argv) {
   }
   // The exact volume of this light (geom/shadow_volume.h build_light_volume):
   // closed components one-sided on the light's side, open ones double-sided.
+  double homogeneous[4];
   float local[4];
-  geom::to_local_light(b.planes.origin, light.light, local);
+  geom::light_homogeneous(light, homogeneous);
+  geom::to_local_light(b.planes.origin, homogeneous, local);
   geom::ShadowVolume volume = b.lights[0].volume;
   if (args.has("--no-caps")) volume.caps.clear();
   const geom::VolumeMesh mesh = geom::finite_volume(volume, local, lo, hi, distance);

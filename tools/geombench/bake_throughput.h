@@ -11,9 +11,12 @@
 // on the rippled UV sphere of scenes.h at each `sphere_n` (70: 9,940 triangles,
 // homer-sized; 158: 50,244, armadillo-sized; 633: 802,620, dragon-sized) and,
 // when `fan_triangles` > 0, a fan of that many triangles around one vertex
-// (the high-valence case). Time: the best of `repetitions` runs, one core,
-// freed memory kept across runs (geom::keep_memory_across_bakes, as
-// `geombake bake` does), for every method alike. Peak memory: each operation once in a forked child, the rise of
+// (the high-valence case). Time: CPU seconds of this thread per call (the
+// machine may be shared: wall time would count other processes' turns), the
+// median of `repetitions`, each as many calls as fill 30 ms, the three methods
+// in turn; one core, freed memory kept across runs
+// (geom::keep_memory_across_bakes, as `geombake bake` does), for every method
+// alike. Peak memory: each operation once in a forked child, the rise of
 // the child's peak resident set (VmHWM, reset through /proc/self/clear_refs)
 // above its resident set once the input is built and freed heap memory is
 // handed back (malloc_trim); 0 where Linux refuses.

@@ -451,7 +451,8 @@ int main(int argc, char** argv) {
   if (!args.has("--no-bake")) {
     const std::vector<int> ns = quick ? std::vector<int>{70, 158} : std::vector<int>{70, 158, 316, 633};
     bake = geombench::bake_throughput(ns, quick ? 1 : 3, quick ? 0 : 320000);
-    std::printf("Bake throughput (one core; time best of %d; peak: extra resident memory of one run)\n", quick ? 1 : 3);
+    std::printf("Bake throughput (one core; CPU time per call, median of %d; peak: extra resident memory of one run)\n",
+                quick ? 1 : 3);
     std::printf("%10s  %-9s %10s %12s %10s %9s %9s\n", "triangles", "method", "ms", "Mtris/s", "peak MiB", "speed/mo",
                 "mem/mo");
     for (size_t i = 0; i < bake.size(); ++i) {

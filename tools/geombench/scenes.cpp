@@ -7,10 +7,10 @@
 #include <draco/compression/decode.h>
 
 #include <cmath>
-#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <iterator>
 
+#include "cli/file.h"
 #include "geom/import.h"
 #include "geom/shadow_reference.h"
 
@@ -114,18 +114,11 @@ void alley(BenchScene& b) {
   b.view = look({0, 1.7f, 1.5f}, {0, 1.2f, -30}, 0.1f, 500);
 }
 
-bool read_file(const std::string& path, std::string& bytes, std::string& error) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return error = path + ": cannot open", false;
-  bytes.assign(std::istreambuf_iterator<char>(f), {});
-  return true;
-}
-
 // A raw Draco mesh file (the Stanford bunny of Draco's test data).
 // Scaled to a largest extent of 1, standing on y = 0, centred on the y axis.
 bool add_draco(geom::Scene& s, const std::string& path, std::string& error) {
   std::string bytes;
-  if (!read_file(path, bytes, error)) return false;
+  if (!cli::read_file(path, bytes, error)) return error = path + ": " + error, false;
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   draco::Decoder decoder;

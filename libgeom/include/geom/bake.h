@@ -1,10 +1,9 @@
-// geom/bake.h: the bake pipeline, from an imported Scene to the sections of a
-// baked container (format: geom/baked_reader.h; writer: geom/baked_writer.h).
+// geom/bake.h: the bake, from an imported Scene to the sections of a baked
+// container (format: geom/baked_reader.h; writer: geom/baked_writer.h).
 //
-//   Scene -> weld (geom/weld.h) -> topology (geom/topology.h) -> face planes
-//   (geom/face_planes.h) -> ESM quads (geom/esm_quads.h), shadow volume
-//   (geom/shadow_volume.h), adjacency (geom/adjacency.h), one exact volume per
-//   static light -> sections
+//   Scene -> the pipeline of geom/pipeline.h (weld, topology, half-edge
+//   summary, face planes, adjacency, ESM quads, shadow volume, one exact
+//   volume per static light) -> sections
 //
 // Sections, in this order, each only when its option asks for it (a light
 // volume needs the generic volume, which is then built but not emitted):
@@ -27,8 +26,10 @@
 //   volume_caps   VolumeCaps        Record  caps             SvCap, 40 B
 //   volume_planes VolumePlanes      F32x4   planes           their plane table
 //   adjacency     AdjacencyIndices  U32     6 x triangles    GL_TRIANGLES_ADJACENCY over `positions`
-//   lights        Lights            F64x4   lights           (x, y, z, w) input coordinates, w = 0: directional
-//                                                            towards (x, y, z); scene lights first, then --light
+//   lights        Lights            F64x4   lights           (x, y, z, w) input coordinates, each light as
+//                                                            geom/scene.h light_homogeneous gives it (w = 0:
+//                                                            directional, (x, y, z) towards the light); scene
+//                                                            lights first, then BakeOptions::lights
 //   light_sides   LightSides        Record  sides            per light, item = light index: its exact volume
 //   light_caps    LightCaps         Record  caps             (geom/shadow_volume.h build_light_volume)
 //   light_planes  LightPlanes       F32x4   planes
@@ -41,39 +42,32 @@
 // byte, on any run and any thread count (no timestamps, pointers or timings).
 // Nothing throws: failures come back in BakeResult::error.
 #pragma once
-#include <array>
 #include <string>
 #include <vector>
 
 #include "geom/baked_writer.h"
-#include "geom/esm_quads.h"
-#include "geom/face_planes.h"
 #include "geom/import.h"
+#include "geom/pipeline.h"
 #include "geom/report.h"
 #include "geom/scene.h"
-#include "geom/shadow_volume.h"
-#include "geom/topology.h"
 
 namespace geom {
 
 struct BakeOptions {
-  float weld_tolerance = 0;  // 0: weld exactly equal positions (geom/weld.h)
-  TopologyOptions topology;
-  FacePlaneOptions planes;
-  EsmOptions esm_options;
-  ShadowVolumeOptions volume_options;  // generic and per-light volumes
+  // The pipeline's settings and the buffers asked for: each of face_planes,
+  // esm, volume and adjacency asked for is emitted (the generic volume is
+  // built for lights anyway, emitted only when asked). The bake always runs
+  // the half-edge summary (its report) and releases each stage's buffers
+  // early; it never times (the sections hold no timings).
+  PipelineOptions pipeline;
   bool positions = true;
   bool indices = true;
   bool weld_remap = true;
-  bool face_planes = true;
   bool topology_report = true;
-  bool esm = true;           // ESM quads and their planes
-  bool volume = true;        // the generic shadow volume
-  bool adjacency = true;     // the adjacency index buffer
   bool scene_lights = true;  // an exact volume per KHR_lights_punctual light of the scene
-  // More static lights, (x, y, z, w) in input coordinates (w = 1 point, w = 0
-  // directional towards xyz), after the scene's; each gets an exact volume.
-  std::vector<std::array<double, 4>> lights;
+  // More static lights, in input coordinates, after the scene's; each gets an
+  // exact volume. One without a name is named "--light N" (N from 1).
+  std::vector<Light> lights;
 };
 
 struct BakeResult {

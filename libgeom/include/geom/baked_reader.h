@@ -455,9 +455,9 @@ class Reader {
 };
 
 namespace detail {
-// read_file() and read_baked_file(): `baked` checks the first 64 bytes first.
+// read_baked_file(): a regular file, its first 64 bytes checked first.
 inline bool read_regular_file(const std::string& path, std::vector<unsigned char>& bytes, std::string& error,
-                              uint64_t max_bytes, bool baked) {
+                              uint64_t max_bytes) {
   bytes.clear();
   std::error_code ec;
   const std::filesystem::file_status st = std::filesystem::status(path, ec);
@@ -486,11 +486,11 @@ inline bool read_regular_file(const std::string& path, std::vector<unsigned char
   unsigned char head[kHeaderSize];
   const size_t got_head = std::fread(head, 1, sizeof head, f);
   std::string problem;
-  if (baked && got_head == 0)
+  if (got_head == 0)
     problem = "empty file, not a geombake baked file";
-  else if (baked && std::memcmp(head, kMagic, got_head < 8 ? got_head : 8) != 0)
+  else if (std::memcmp(head, kMagic, got_head < 8 ? got_head : 8) != 0)
     problem = "not a geombake baked file (bad magic)";
-  else if (baked && got_head >= 40 && detail::load_u64(head + 32) != size)
+  else if (got_head >= 40 && detail::load_u64(head + 32) != size)
     problem = "the header says " + std::to_string(detail::load_u64(head + 32)) + " bytes, the file has " +
               std::to_string(size) + " (truncated or not a baked file)";
   if (!problem.empty()) {
@@ -511,20 +511,15 @@ inline bool read_regular_file(const std::string& path, std::vector<unsigned char
 }
 }  // namespace detail
 
-// Reads a whole file into `bytes` (refusing files over max_bytes); false with
-// `error` ("cannot open file", ...) on failure. Only a regular file is opened:
-// a FIFO, a device or a directory is refused by name.
-inline bool read_file(const std::string& path, std::vector<unsigned char>& bytes, std::string& error,
-                      uint64_t max_bytes = uint64_t(1) << 34) {
-  return detail::read_regular_file(path, bytes, error, max_bytes, false);
-}
-
-// As read_file(), for a baked file: its first 64 bytes are read and checked
-// (magic, and the file size its header gives) before the rest is allocated
-// and read, so an 8 GB file that is not baked costs 64 bytes.
+// Reads a whole baked file into `bytes` (refusing files over max_bytes); false
+// with `error` ("cannot open file", ...) on failure. Only a regular file is
+// opened: a FIFO, a device or a directory is refused by name. Its first 64
+// bytes are read and checked (magic, and the file size its header gives)
+// before the rest is allocated and read, so an 8 GB file that is not baked
+// costs 64 bytes.
 inline bool read_baked_file(const std::string& path, std::vector<unsigned char>& bytes, std::string& error,
                             uint64_t max_bytes = uint64_t(1) << 34) {
-  return detail::read_regular_file(path, bytes, error, max_bytes, true);
+  return detail::read_regular_file(path, bytes, error, max_bytes);
 }
 
 // A baked file loaded into memory (or mapped) and validated: owns the bytes, views them.

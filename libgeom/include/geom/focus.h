@@ -114,6 +114,18 @@ enum class FocusFallback : uint8_t {
   InvalidInput,        // non-finite or absurd input: identity matrix
 };
 
+// Seconds spent in each stage of compute_focus, added up over the calls that
+// are given it (FocusOptions::stage_times): for a profiler, or to see where a
+// frame's microseconds go (bench/bench_focus.cpp).
+struct FocusStageTimes {
+  double setup = 0;      // inputs checked, S and L as half-spaces
+  double receivers = 0;  // R = V n S n L: plane clips of the view frustum
+  double hull = 0;       // the silhouette of R from the light (CGAL's 2D hull), or the 3D hull of R and the light
+  double clip = 0;       // S cut by the half-spaces of conv(R u {l}) and L
+  double faces = 0;      // H's faces for the output: the indexed polygons (a CGAL 3D hull when they do not close)
+  double matrix = 0;     // the light's kind, the shift, the matrix of the method
+};
+
 struct FocusOptions {
   FocusMethod method = FocusMethod::Psm;
   // PSM: the virtual camera's near plane is at least this fraction of the
@@ -132,6 +144,8 @@ struct FocusOptions {
   // Optional shadow casters: S becomes the convex hull of these points
   // intersected with the scene box (the box alone when empty).
   PositionSpan casters;
+  // Optional: each stage's time is added here (a clock read per stage).
+  FocusStageTimes* stage_times = nullptr;
   // Point, spot: the floor of the light's near plane; 0 = automatic (1e-3 of
   // the farthest receiver's distance along the light's axis).
   double light_near = 0;

@@ -1,7 +1,7 @@
 // geom/report.h: the topology report of one input, for people and machines.
 //
-// `analyze` runs the default pipeline (exact weld, or the given tolerance,
-// then build_topology) over an imported scene; `report_json` writes one JSON
+// `analyze` runs the pipeline's first stages (geom/pipeline.h: weld, topology,
+// OpenMesh's half-edge summary) over an imported scene; `report_json` writes one JSON
 // object on one line with these keys (counts over the non-collapsed triangles
 // after the weld, see geom/topology.h for the definitions):
 //   file, triangles, vertices, edges, boundary_edges, manifold_edges,
@@ -19,16 +19,11 @@
 #include <vector>
 
 #include "geom/halfedge.h"
+#include "geom/pipeline.h"
 #include "geom/scene.h"
 #include "geom/topology.h"
 
 namespace geom {
-
-struct StageTiming {
-  std::string stage;
-  double seconds = 0;
-  uint64_t peak_rss_bytes = 0;  // the process's peak resident set after the stage (0 if unknown)
-};
 
 struct Report {
   std::string file;
@@ -40,9 +35,14 @@ struct Report {
   std::vector<StageTiming> stages;  // empty unless timing was asked for
 };
 
-// Weld (tolerance 0: exact) and build the topology of `scene`; fills `report`
-// (and appends "weld" and "topology" stages when `timing` is set).
-void analyze(const Scene& scene, float weld_tolerance, const TopologyOptions& options, bool timing, Report& report);
+// Runs the pipeline's weld, topology and half-edge summary over `scene` with
+// `options`' settings (the buffers it asks for are not built) and fills
+// `report` (its `file` left as it is; with options.timing the stages
+// "weld", "topology" and "halfedge" appended).
+void analyze(const Scene& scene, const PipelineOptions& options, Report& report);
+// Fills `report` from a pipeline `run` over `scene` (run with halfedge): all
+// but `file`; the run's stages are appended.
+void report_of(const Scene& scene, const Pipeline& run, Report& report);
 
 std::string report_json(const Report& report);
 std::string report_text(const Report& report);

@@ -40,10 +40,10 @@
 
 #include "geom/baked_reader.h"
 #include "geom/esm_quads.h"
+#include "geom/pipeline.h"
 #include "geom/png.h"
 #include "geom/scene.h"
 #include "geom/shadow_volume.h"
-#include "geom/silhouette.h"
 
 namespace render {
 
@@ -63,7 +63,7 @@ bool technique_needs_point_light(Technique t);                  // cube: no dire
 bool technique_is_soft(Technique t);                            // the *-soft ones: a light fraction (light_radius)
 
 // The silhouette buffers of one caster as the renderer takes them: borrowed
-// arrays, from an in-process bake (geom/silhouette.h) or a baked container
+// arrays, from an in-process bake (geom/pipeline.h) or a baked container
 // (geom/baked_reader.h) alike. Null arrays with `has_*` false: not baked.
 struct BakedView {
   double origin[3] = {0, 0, 0};   // the caster's local frame (geom/face_planes.h)
@@ -97,7 +97,7 @@ struct BakedView {
 };
 
 // The view of an in-process bake (borrows `buffers`).
-BakedView baked_view(const geom::SilhouetteBuffers& buffers);
+BakedView baked_view(const geom::Pipeline& buffers);
 // The view of a baked container's one caster (borrows the reader's bytes);
 // false with `error` when it has no usable positions and indices.
 bool baked_view(const geom::baked::Reader& reader, BakedView& out, std::string& error);

@@ -1,51 +1,83 @@
-// Every silhouette buffer of one mesh (see geom/silhouette.h): the pipeline
-// and the report of what each "only what a scene needs" rule saved.
-#include "geom/silhouette.h"
+// The one pipeline (geom/pipeline.h): weld -> topology -> half-edge summary ->
+// face planes -> adjacency -> ESM quads -> shadow volume -> light volumes, each
+// stage the library's own (one algorithm per file), and the report of what
+// each "only what a scene needs" rule saved.
+#include "geom/pipeline.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
+#include "geom/report.h"
 
 namespace geom {
 
-std::vector<LightVolume> scene_lights(const Scene& scene) {
-  std::vector<LightVolume> out;
-  for (const Light& l : scene.lights) {
-    LightVolume v;
-    v.name = l.name;
-    light_homogeneous(l, v.light);  // geom/scene.h: directional (-direction, 0), else (position, 1)
-    out.push_back(v);
+Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                      const std::vector<Light>& lights, const PipelineOptions& options) {
+  using clock = std::chrono::steady_clock;
+  Pipeline p;
+  auto mark = clock::now();
+  const auto done = [&](const char* stage) {
+    if (!options.timing) return;
+    const auto now = clock::now();
+    p.stages.push_back({stage, std::chrono::duration<double>(now - mark).count(), peak_rss_bytes()});
+    mark = now;
+  };
+  const size_t tc = triangle_count;
+  p.weld = weld(positions, indices, 3 * tc, options.weld_tolerance);
+  done("weld");
+  const PositionSpan welded = positions_of(p.weld.positions.data(), p.weld.vertex_count());
+  const uint32_t* wi = p.weld.indices.data();
+  p.topology = build_topology(welded, wi, tc, {options.coplanar_degrees, options.dihedral_angles});
+  done("topology");
+  if (options.halfedge) {
+    p.halfedge = summarize_halfedges(welded, wi, tc, p.topology);
+    done("halfedge");
   }
-  return out;
-}
-
-SilhouetteBuffers bake_silhouettes(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                                   std::vector<LightVolume> lights, const SilhouetteOptions& options) {
-  SilhouetteBuffers b;
-  b.weld = weld(positions, indices, 3 * triangle_count, options.weld_tolerance);
-  const PositionSpan welded = positions_of(b.weld.positions.data(), b.weld.vertex_count());
-  const uint32_t* wi = b.weld.indices.data();
-  b.topology = build_topology(welded, wi, triangle_count, options.topology);
-  b.planes = compute_face_planes(welded, wi, triangle_count, b.topology, options.planes);
-  if (options.esm_quads) b.esm = build_esm_quads(welded, wi, triangle_count, b.topology, b.planes, options.esm);
-  if (options.shadow_volume || !lights.empty())
-    b.volume = build_shadow_volume(welded, wi, triangle_count, b.topology, b.planes, options.volume);
-  if (options.adjacency) {
-    b.adjacency.resize(adjacency_index_count(triangle_count));
-    build_adjacency(b.adjacency.data(), wi, triangle_count, b.topology);
+  const bool volume = options.volume || !lights.empty();
+  if (options.face_planes || options.esm || volume) {
+    p.planes = compute_face_planes(welded, wi, tc, p.topology, {options.coplanar_degrees, options.coplanar_distance});
+    done("planes");
   }
-  for (LightVolume& l : lights) {
+  if (options.adjacency) {  // while the per-face tables are whole
+    p.adjacency.resize(adjacency_index_count(tc));
+    build_adjacency(p.adjacency.data(), wi, tc, p.topology);
+    done("adjacency");
+  }
+  if (options.release_early) {  // no later stage reads them
+    std::vector<uint32_t>().swap(p.topology.face_edges);
+    std::vector<uint32_t>().swap(p.topology.face_component);
+    std::vector<uint8_t>().swap(p.topology.face_flags);
+  }
+  if (options.esm) {
+    p.esm = build_esm_quads(welded, wi, tc, p.topology, p.planes, options.esm_options);
+    done("esm");
+  }
+  if (options.release_early) std::vector<double>().swap(p.planes.normals);  // only the ESM quads read them
+  if (volume) {
+    p.volume = build_shadow_volume(welded, wi, tc, p.topology, p.planes, options.volume_options);
+    done("volume");
+  }
+  if (options.release_early) {  // the edge table: read by the volume last
+    std::vector<Edge>().swap(p.topology.edges);
+    std::vector<uint32_t>().swap(p.topology.edge_faces);
+  }
+  p.lights.reserve(lights.size());
+  for (const Light& light : lights) {
+    double h[4];
     float local[4];
-    to_local_light(b.planes.origin, l.light, local);
-    l.volume = build_light_volume(b.volume, local);
+    light_homogeneous(light, h);
+    to_local_light(p.planes.origin, h, local);
+    p.lights.push_back({light, build_light_volume(p.volume, local)});
   }
-  b.lights = std::move(lights);
-  return b;
+  if (!lights.empty()) done("lights");
+  return p;
 }
 
-std::string silhouette_report(const SilhouetteBuffers& b) {
+std::string silhouette_report(const Pipeline& b) {
   std::string s;
   char line[512];
   auto pct = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
@@ -57,7 +89,7 @@ std::string silhouette_report(const SilhouetteBuffers& b) {
                 (unsigned long long)b.topology.stats.triangles, (unsigned long long)b.planes.degenerate_faces,
                 b.planes.plane_count(), (unsigned long long)b.planes.shared_faces);
   s += line;
-  if (e.edges > 0) {  // built (SilhouetteOptions::esm_quads)
+  if (e.edges > 0) {  // built (PipelineOptions::esm)
     std::snprintf(line, sizeof line,
                   "esm quads: %llu candidate edges, %llu emitted (%.1f%%), %llu quads (%llu bevel edges), %llu "
                   "bytes = %.1f per emitted edge (naive 160-byte layout, every candidate: %llu bytes)\n",
@@ -89,10 +121,12 @@ std::string silhouette_report(const SilhouetteBuffers& b) {
   s += line;
   for (const LightVolume& l : b.lights) {
     const ShadowVolumeStats& lv = l.volume.stats;
+    double h[4];
+    light_homogeneous(l.light, h);
     std::snprintf(line, sizeof line,
                   "light '%s' (%g, %g, %g, %g): exact volume %llu sides, %llu caps, %llu bytes; rule per-light: "
                   "%llu side records / %llu caps / %lld bytes saved against the generic volume\n",
-                  l.name.c_str(), l.light[0], l.light[1], l.light[2], l.light[3], (unsigned long long)lv.sides,
+                  l.light.name.c_str(), h[0], h[1], h[2], h[3], (unsigned long long)lv.sides,
                   (unsigned long long)lv.caps, (unsigned long long)lv.bytes,
                   (unsigned long long)(v.sides - std::min(v.sides, lv.sides)),
                   (unsigned long long)(v.caps - std::min(v.caps, lv.caps)), (long long)v.bytes - (long long)lv.bytes);

@@ -1,0 +1,71 @@
+// libgeom's one whole-file read (file_read.h).
+#include "file_read.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include "file_kind.h"
+
+namespace geom::detail {
+
+uint64_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : 0;
+}
+
+bool read_whole_file(const std::string& path, std::vector<unsigned char>& bytes, uint64_t max_bytes,
+                     std::string& error) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    error = std::string("cannot open file: ") + std::strerror(errno);
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    error = file_kind(st.st_mode) + ", not a regular file: not read";
+    return false;
+  }
+  int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) {
+    error = std::string("cannot open file: ") + std::strerror(errno);
+    return false;
+  }
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    error = "not a regular file: not read";
+    return false;
+  }
+  const uint64_t size = uint64_t(st.st_size);
+  if (max_bytes && size > max_bytes) {
+    error = "file is " + std::to_string(size) + " bytes, over the limit of " + std::to_string(max_bytes);
+    return false;
+  }
+  const uint64_t memory = physical_memory_bytes();
+  if (memory && size > memory) {
+    error = "file is " + std::to_string(size) + " bytes, more than this machine's memory (" + std::to_string(memory) +
+            " bytes)";
+    return false;
+  }
+  bytes.resize(size_t(size));
+  size_t got = 0;
+  while (got < bytes.size()) {
+    ssize_t n = ::read(fd, bytes.data() + got, std::min<size_t>(bytes.size() - got, size_t(1) << 30));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    got += size_t(n);
+  }
+  if (got != bytes.size()) {
+    error = "cannot read file (it shrank while being read?)";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace geom::detail
