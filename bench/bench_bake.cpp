@@ -48,6 +48,7 @@
 #include "geom/face_planes.h"
 #include "geom/import.h"
 #include "geom/pipeline.h"
+#include "geom/report.h"
 #include "geom/shadow_volume.h"
 #include "geom/topology.h"
 #include "geom/weld.h"

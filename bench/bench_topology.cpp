@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "geom/import.h"
+#include "geom/report.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
 #include "peers.h"
-#include "peak_rss.h"  // libgeom/src
 
 namespace {
 

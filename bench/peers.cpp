@@ -9,7 +9,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <cstdio>
 
-#include "peak_rss.h"  // libgeom/src
+#include "geom/report.h"
 
 namespace geom_bench {
 

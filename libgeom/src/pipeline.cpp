@@ -11,8 +11,7 @@
 
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
-
-#include "peak_rss.h"
+#include "geom/report.h"
 
 namespace geom {
 

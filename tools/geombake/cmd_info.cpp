@@ -14,7 +14,6 @@
 #include "geombake/fault.h"
 #include "geombake/flags.h"
 #include "geombake/inputs.h"
-#include "peak_rss.h"  // libgeom/src
 
 namespace geombake {
 namespace {

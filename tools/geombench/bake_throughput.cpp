@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "geom/bake.h"
+#include "geom/report.h"
 #include "geom/weld.h"
 #include "peers.h"
 #include "scenes.h"

@@ -56,4 +56,7 @@ std::string report_text(const Report& report);
 // json.loads(text).encode("utf-8", "surrogateescape") gives the bytes back.
 std::string json_quote(const std::string& s);
 
+// The process's peak resident set size in bytes (Linux VmHWM), 0 if unknown.
+uint64_t peak_rss_bytes();
+
 }  // namespace geom
