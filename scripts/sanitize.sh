@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# The sanitizer job of CI (.ci/run): builds the project in build-asan/ with
-# AddressSanitizer + UndefinedBehaviorSanitizer (GEOM_SANITIZE=ON, no benchmarks,
-# no viewer) and runs the CPU tests under them (`ctest -LE gl`); then the
+# The sanitizer job of CI (.ci/run): builds the project in build-asan/ as a
+# Debug build with the asserts on (no NDEBUG; -O1, as AddressSanitizer advises)
+# and AddressSanitizer + UndefinedBehaviorSanitizer (GEOM_SANITIZE=ON, no
+# benchmarks, no viewer) and runs the CPU tests under them (`ctest -LE gl`):
+# the Debug job beside scripts/test.sh's Release one, so the asserts the
+# headers promise for caller bugs run in every CI run; then the
 # ThreadSanitizer job: geombake and the batch tests (test_batch_bake,
 # test_hostile) built in build-tsan/ with GEOM_TSAN=ON and run under it (any
 # data race fails them). Extra arguments go to the ASan job's ctest (e.g.
@@ -15,8 +18,8 @@ command -v ninja >/dev/null 2>&1 && [ ! -f build-asan/Makefile ] && GEN=(-G Ninj
 t0=$(date +%s)
 JOBS=${SANITIZE_JOBS:-asan,tsan}
 if [[ $JOBS == *asan* ]]; then
-  cmake -S . -B build-asan "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release -DGEOM_SANITIZE=ON -DGEOM_BUILD_BENCH=OFF \
-    -DGEOM_BUILD_VIEWER=OFF >/dev/null
+  cmake -S . -B build-asan "${GEN[@]}" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g" \
+    "-DCMAKE_C_FLAGS_DEBUG=-O1 -g" -DGEOM_SANITIZE=ON -DGEOM_BUILD_BENCH=OFF -DGEOM_BUILD_VIEWER=OFF >/dev/null
   cmake --build build-asan -j"$(nproc)"
 fi
 t1=$(date +%s)
@@ -26,7 +29,7 @@ if [[ $JOBS == *asan* ]]; then
   (cd build-asan && ctest --output-on-failure -j"$(nproc)" -LE gl "$@")
 fi
 t2=$(date +%s)
-echo "sanitizer job: build $((t1 - t0)) s, CPU tests $((t2 - t1)) s"
+echo "sanitizer job (Debug, asserts on): build $((t1 - t0)) s, CPU tests $((t2 - t1)) s"
 if [[ $JOBS == *tsan* ]]; then
   cmake -S . -B build-tsan "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release -DGEOM_TSAN=ON -DGEOM_BUILD_BENCH=OFF \
     -DGEOM_BUILD_VIEWER=OFF >/dev/null
