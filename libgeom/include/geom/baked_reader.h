@@ -48,7 +48,9 @@
 // iSCSI, ext4 and SSE4.2's crc32 instruction. crc32c() below computes it.
 //
 // SECTIONS written by `geombake bake` (geom/bake.h says what each holds; the
-// records' layouts are in geom/esm_quads.h and geom/shadow_volume.h):
+// records' structs are in geom/baked_records.h, standard library only like
+// this file; their layouts are documented in geom/esm_quads.h and
+// geom/shadow_volume.h):
 //   type               format  stride  count            upload as
 //   Positions          F32x3   12      welded vertices  GL_ARRAY_BUFFER
 //   Indices            U32     4       3 x triangles    GL_ELEMENT_ARRAY_BUFFER

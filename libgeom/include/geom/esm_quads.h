@@ -66,23 +66,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "geom/baked_records.h"
 #include "geom/face_planes.h"
 #include "geom/span.h"
 #include "geom/topology.h"
 
 namespace geom {
 
-#pragma pack(push, 1)
-struct EsmQuad {
-  static constexpr uint32_t kFlip = 0x80000000u;
-  float p0[3];
-  float p1[3];
-  uint32_t plane_a;
-  uint32_t plane_b;
-  int16_t q[2];
-};
-#pragma pack(pop)
-static_assert(sizeof(EsmQuad) == 36, "EsmQuad is the 36-byte GPU record");
+// EsmQuad, the 36-byte record: geom/baked_records.h (standard library only, for engines).
 
 struct EsmStats {
   uint64_t edges = 0;             // all edges of the topology

@@ -122,6 +122,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geom/baked_records.h"
 #include "geom/face_planes.h"
 #include "geom/span.h"
 #include "geom/topology.h"
@@ -146,25 +147,7 @@ inline int light_side(const float plane[4], const float light[4]) {
   return s > m ? 1 : (s < -m ? -1 : 0);
 }
 
-#pragma pack(push, 1)
-struct SvSide {
-  static constexpr uint32_t kFlip = 0x80000000u;    // in plane_b
-  static constexpr uint32_t kSecond = 0x80000000u;  // in plane_a
-  float p0[3];
-  float p1[3];
-  uint32_t plane_a;
-  uint32_t plane_b;
-};
-struct SvCap {
-  static constexpr uint32_t kDoubleSided = 0x80000000u;
-  float a[3];
-  float b[3];
-  float c[3];
-  uint32_t plane;
-};
-#pragma pack(pop)
-static_assert(sizeof(SvSide) == 32, "SvSide is the 32-byte GPU record");
-static_assert(sizeof(SvCap) == 40, "SvCap is the 40-byte GPU record");
+// SvSide (32 bytes) and SvCap (40 bytes), the records: geom/baked_records.h (standard library only).
 
 struct ShadowVolumeStats {
   uint64_t edges = 0;                     // all edges of the topology
