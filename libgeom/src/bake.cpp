@@ -60,7 +60,8 @@ BakedSection record_section(SectionType type, const char* name, const std::vecto
 
 std::string esm_json(const EsmStats& s) {
   return "{\"edges\":" + json::count(s.edges) + ",\"candidate_edges\":" + json::count(s.candidate_edges) +
-         ",\"emitted_edges\":" + json::count(s.emitted_edges) + ",\"skipped_coplanar\":" + json::count(s.skipped_coplanar) +
+         ",\"emitted_edges\":" + json::count(s.emitted_edges) +
+         ",\"skipped_coplanar\":" + json::count(s.skipped_coplanar) +
          ",\"skipped_concave\":" + json::count(s.skipped_concave) + ",\"quads\":" + json::count(s.quads) +
          ",\"bevel_edges\":" + json::count(s.bevel_edges) + ",\"bytes\":" + json::count(s.bytes) +
          ",\"naive_bytes\":" + json::count(s.naive_bytes) + "}";
@@ -161,7 +162,8 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
     if (asked.esm || asked.volume || !lights.empty()) {  // the buffers in the local frame
       std::vector<double> origin(p.planes.origin, p.planes.origin + 3);
       s.push_back(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
-      js += "\"frame\":[" + json::number(origin[0]) + "," + json::number(origin[1]) + "," + json::number(origin[2]) + "],";
+      js += "\"frame\":[" + json::number(origin[0]) + "," + json::number(origin[1]) + "," + json::number(origin[2]) +
+            "],";
     }
     if (asked.esm) {
       s.push_back(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept));

@@ -22,9 +22,9 @@ struct Frame {
   V3 eye, view_dir;
   // light
   bool directional = false;
-  V3 light_pos;      // point, spot
-  V3 towards_light;  // directional: unit vector towards the light
-  V3 light_axis;     // point, spot: the light frustum's axis (unit)
+  V3 light_pos;           // point, spot
+  V3 towards_light;       // directional: unit vector towards the light
+  V3 light_axis;          // point, spot: the light frustum's axis (unit)
   double light_near = 0;  // point, spot: L's near plane, at the floor (near_plane_cut)
   // bodies
   std::vector<Plane> s_planes, l_planes, r_planes, hull_clip, v_planes, hull_clip_planes;

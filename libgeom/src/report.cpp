@@ -50,8 +50,9 @@ void analyze(const Scene& scene, const PipelineOptions& options, Report& report)
   o.halfedge = true;
   o.face_planes = o.esm = o.volume = o.adjacency = false;
   o.release_early = true;
-  report_of(scene, run_pipeline(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                                scene.triangle_count(), {}, o),
+  report_of(scene,
+            run_pipeline(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
+                         scene.triangle_count(), {}, o),
             report);
 }
 

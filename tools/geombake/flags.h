@@ -3,8 +3,8 @@
 // (geom/pipeline.h) and the per-input limits (geombake/fault.h).
 #pragma once
 #include <cstdint>
-#include <string>
 #include <set>
+#include <string>
 
 #include "cli/args.h"
 #include "geom/import.h"
