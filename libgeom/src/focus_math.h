@@ -1,35 +1,24 @@
-// focus_math.h (private): the small double-precision vector, plane and 4x4
-// matrix helpers shared by the focus files (focus_body, focus_frame, light_matrix,
+// focus_math.h (private): the small double-precision plane and 4x4 matrix
+// helpers, over vec3.h's vector, shared by the focus files (focus_body, focus_frame, light_matrix,
 // compute_focus) and cube_faces.cpp.
 // Matrices are column-major (m[col*4 + row]), as in geom/focus.h.
 #pragma once
 #include <cmath>
 #include <cstring>
 
+#include "vec3.h"
+
 namespace geom {
 namespace focus {
 
 constexpr double kPi = 3.14159265358979323846;
 
-struct V3 {
-  double x = 0, y = 0, z = 0;
-  V3() = default;
-  V3(double a, double b, double c) : x(a), y(b), z(c) {}
-  explicit V3(const double* p) : x(p[0]), y(p[1]), z(p[2]) {}
-  double operator[](int i) const { return i == 0 ? x : i == 1 ? y : z; }
-};
-inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator-(V3 a) { return {-a.x, -a.y, -a.z}; }
-inline V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-inline V3 operator*(double s, V3 a) { return a * s; }
-inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-inline double length(V3 a) { return std::sqrt(dot(a, a)); }
-inline V3 normalize(V3 a) {
-  double l = length(a);
-  return l > 0 ? a * (1.0 / l) : V3(0, 0, 0);
-}
+// The vector is libgeom's one (vec3.h); these add what the focus files need.
+using V3 = vec3::Vec3;
+using vec3::cross;
+using vec3::dot;
+using vec3::length;
+inline V3 normalize(V3 a) { return vec3::normalize_or(a, V3(0, 0, 0)); }
 inline bool finite(V3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 inline double max_abs(V3 a) { return std::fmax(std::fabs(a.x), std::fmax(std::fabs(a.y), std::fabs(a.z))); }
 // A unit vector perpendicular to unit n.
