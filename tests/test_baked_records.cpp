@@ -17,6 +17,7 @@
 
 #include "geom/baked_reader.h"
 #include "geom/baked_records.h"
+#include "scratch.h"
 
 namespace {
 
@@ -25,13 +26,8 @@ using geom::baked::File;
 using geom::baked::Section;
 using geom::baked::SectionType;
 
-struct Scratch {
-  fs::path dir = fs::temp_directory_path() / ("geom_records_" + std::to_string(::getpid()));
-  Scratch() { fs::create_directories(dir); }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
+struct Scratch : testfs::Scratch {
+  Scratch() : testfs::Scratch("geom_records") {}
 };
 
 bool finite3(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }

@@ -25,13 +25,8 @@ namespace fs = std::filesystem;
 using viewertest::kScene;  // the geomview tests' scene (viewer_run.h)
 const char* const kObj = kScene;
 
-struct Temp {
-  fs::path dir = fs::temp_directory_path() / ("geomview_cli_" + std::to_string(::getpid()));
-  Temp() { fs::create_directories(dir); }
-  ~Temp() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
+struct Temp : testfs::Scratch {
+  Temp() : testfs::Scratch("geomview_cli") {}
 };
 
 int run(const std::string& args, std::string* output = nullptr) {

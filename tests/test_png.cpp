@@ -12,19 +12,14 @@
 #include <random>
 
 #include "geom/png.h"
+#include "scratch.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Scratch {
-  fs::path dir = fs::temp_directory_path() / ("geom_png_" + std::to_string(::getpid()));
-  Scratch() { fs::create_directories(dir); }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+struct Scratch : testfs::Scratch {
+  Scratch() : testfs::Scratch("geom_png") {}
 };
 
 TEST(Png, WrittenImagesReadBackExactly) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geom/png.h"
+#include "scratch.h"
 
 namespace viewertest {
 
@@ -56,17 +57,9 @@ inline void parse_obj(const char* text, std::vector<float>& positions, std::vect
   }
 }
 
-struct Scratch {
-  fs::path dir;
-  explicit Scratch(const std::string& name)
-      : dir(fs::temp_directory_path() / ("geomview_" + name + "_" + std::to_string(::getpid()))) {
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& name) const { return (dir / name).string(); }
+// A scratch folder named geomview_NAME_PID (tests/scratch.h).
+struct Scratch : testfs::Scratch {
+  explicit Scratch(const std::string& name) : testfs::Scratch("geomview_" + name) {}
 };
 
 struct ViewerRun {
