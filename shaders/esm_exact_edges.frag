@@ -15,7 +15,10 @@
 // caster's edge over a receiver's own outline. MAX blending keeps the edge the
 // sample is least inside, which on jenga is the lower block's own outline.
 // Edges hidden from the light are not written (000, Sect. 3.1): the edge's
-// depth against the farthest of the 3 x 3 depth-map texels around the sample.
+// depth against the farthest of the 3 x 3 depth-map texels around the sample
+// (against the texel under the sample alone, as the paper's depth test does:
+// the same within a pixel on jenga, default, scan, quake3 and duelling at 512
+// and 2048, wide-depth@2048 error_cast 2.49% against 2.41%; not kept).
 in float v_side;
 flat in vec4 v_edge;    // edge end points in the light's NDC
 flat in vec2 v_edge_z;  // their NDC depths
