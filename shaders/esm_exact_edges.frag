@@ -14,6 +14,8 @@
 // resolved with depth): where quads overlap the edge nearer the light wins, a
 // caster's edge over a receiver's own outline. MAX blending keeps the edge the
 // sample is least inside, which on jenga is the lower block's own outline.
+// The weight of depth, measured (geombench jenga@512 error_cast pixels, 1
+// frame): 0.8 1,496, 0.95 658, 0.99 1,387; 2048 and the other scenes the same.
 // Edges hidden from the light are not written (000, Sect. 3.1): the edge's
 // depth against the farthest of the 3 x 3 depth-map texels around the sample
 // (against the texel under the sample alone, as the paper's depth test does:
