@@ -12,7 +12,7 @@ namespace render {
 
 // How the edge map starts and blends.
 enum class EdgeTarget {
-  Distance,     // edsm-soft: RG32F cleared to 3e38 ("no edge yet") and depth-tested
+  Distance,     // edsm-soft, esm-exact: RG32F cleared to 3e38 ("no edge yet") and depth-tested
   EdgePair,     // edsm, first edge: RGBA32UI cleared to "no edge" (depth bits all ones) and depth-tested
   EdgeSecond,   // edsm, second edge (peeled): the first pass's colours kept, depth cleared and tested
   Silhouette,   // sssm: RG32UI cleared to 0 (the cell's centre) and depth-tested from 1
