@@ -146,7 +146,13 @@ bool write_file_atomically(const std::string& path, const void* data, size_t siz
   return write_file_atomically(path, &part, 1, error);
 }
 
-bool write_file_atomically(const std::string& path, const FilePart* parts, size_t count, std::string& error) {
+AtomicFile::~AtomicFile() {
+  if (!renamed_ && !name_.empty()) ::unlink(name_.c_str());
+  release_slot(slot_);
+  if (fd_ >= 0) ::close(fd_);  // the lock goes with it, after the rename
+}
+
+bool AtomicFile::open(const std::string& path, std::string& error) {
   if (path.empty()) {
     error = "the output path is empty";
     return false;
@@ -161,58 +167,64 @@ bool write_file_atomically(const std::string& path, const FilePart* parts, size_
     return false;
   }
   const size_t slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-  // Whatever happens from here (an error, an exception), the temporary file
-  // goes unless it was renamed.
-  struct Temp {
-    int fd = -1, slot = -1;
-    std::string name;
-    bool renamed = false;
-    ~Temp() {
-      if (!renamed && !name.empty()) ::unlink(name.c_str());
-      release_slot(slot);
-      if (fd >= 0) ::close(fd);  // the lock goes with it, after the rename
-    }
-  } t;
-  t.fd = create_temp(dir, t.name);
-  if (t.fd < 0) {
-    error = "cannot create a temporary file in '" + dir + "': " + std::strerror(errno);
+  path_ = path;
+  dir_ = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+  fd_ = create_temp(dir_, name_);
+  if (fd_ < 0) {
+    error = "cannot create a temporary file in '" + dir_ + "': " + std::strerror(errno);
     return false;
   }
-  t.slot = t.name.empty() ? -1 : claim_slot(t.name);
+  slot_ = name_.empty() ? -1 : claim_slot(name_);
+  return true;
+}
+
+bool AtomicFile::commit(std::string& error) {
   auto fail = [&](const std::string& what) {
     error = what + ": " + std::strerror(errno);
     return false;
   };
-  if (!write_parts(t.fd, parts, count)) return fail("cannot write '" + path + "'");
-  if (::fsync(t.fd) != 0) return fail("cannot flush '" + path + "'");
-  if (t.name.empty()) {  // give the unnamed file a random name, then rename it
-    const std::string proc = "/proc/self/fd/" + std::to_string(t.fd);
-    for (int attempt = 0; attempt < 100 && t.name.empty(); ++attempt) {
-      std::string candidate = random_name(dir);
-      t.slot = claim_slot(candidate);
+  if (fd_ < 0) {
+    errno = EBADF;
+    return fail("cannot write '" + path_ + "'");
+  }
+  if (::fsync(fd_) != 0) return fail("cannot flush '" + path_ + "'");
+  if (name_.empty()) {  // give the unnamed file a random name, then rename it
+    const std::string proc = "/proc/self/fd/" + std::to_string(fd_);
+    for (int attempt = 0; attempt < 100 && name_.empty(); ++attempt) {
+      std::string candidate = random_name(dir_);
+      slot_ = claim_slot(candidate);
       if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
-        t.name = candidate;
+        name_ = candidate;
       } else {
         const int e = errno;
-        release_slot(t.slot);
-        t.slot = -1;
+        release_slot(slot_);
+        slot_ = -1;
         if (e != EEXIST) {
           errno = e;
-          return fail("cannot name the temporary file in '" + dir + "'");
+          return fail("cannot name the temporary file in '" + dir_ + "'");
         }
       }
     }
-    if (t.name.empty()) return fail("cannot name the temporary file in '" + dir + "'");
+    if (name_.empty()) return fail("cannot name the temporary file in '" + dir_ + "'");
   }
-  if (std::rename(t.name.c_str(), path.c_str()) != 0) return fail("cannot rename the temporary file to '" + path + "'");
-  t.renamed = true;
-  int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (std::rename(name_.c_str(), path_.c_str()) != 0) return fail("cannot rename the temporary file to '" + path_ + "'");
+  renamed_ = true;
+  int dfd = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {
     ::fsync(dfd);  // the rename itself on disk; best effort
     ::close(dfd);
   }
   return true;
+}
+
+bool write_file_atomically(const std::string& path, const FilePart* parts, size_t count, std::string& error) {
+  AtomicFile file;
+  if (!file.open(path, error)) return false;
+  if (!write_parts(file.fd(), parts, count)) {
+    error = "cannot write '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  return file.commit(error);
 }
 
 size_t remove_stale_temp_files(const std::string& dir) {

@@ -97,6 +97,16 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
 // read them. `scene` keeps its lights, warnings and counts.
 BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options = {});
 
+// The same bake with the lowest peak: each section is written to `out`
+// (opened, not yet expected or finished: the caller finishes it) as soon as
+// the stage that makes it has run, and its buffer freed, so the weld's
+// remap, the ESM quads, the volume and the adjacency never all coexist. The
+// file is byte for byte write_baked's of bake_scene's sections;
+// result.sections describe them (size() is 0: their bytes are gone). A
+// failed write is result.error ("NAME: cannot write the output: ..."), and
+// out.error() says it.
+BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options, BakedFileWriter& out);
+
 // Imports `input`, bakes it and writes the container to `output` atomically:
 // on any failure no output file is created (an existing one is left as it was).
 // `result.sections` holds what was written.
