@@ -122,8 +122,13 @@ bool finite4(const double v[4]) {
 bool keep_memory_across_bakes() {
 #if defined(__GLIBC__)
   // No mmap'd chunks (they are unmapped on free; glibc caps the mmap threshold
-  // at 32 MiB, below a large mesh's buffers), no trimming of the heap's top.
-  return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
+  // at 32 MiB, below a large mesh's buffers), no trimming of the heap's top,
+  // and one arena for every thread: a worker thread's own arena lives in 64 MiB
+  // heaps, so its large buffers were mmap'd anyway (whatever M_MMAP_MAX) and
+  // unmapped on free, and emptied heaps were deleted: a bake on a worker
+  // faulted in 85,000 fresh pages where the main heap needs 63,000 (the
+  // dragon-sized mesh). Small allocations stay in each thread's cache.
+  return mallopt(M_MMAP_MAX, 0) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1 && mallopt(M_ARENA_MAX, 1) == 1;
 #else
   return false;
 #endif

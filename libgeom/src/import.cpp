@@ -163,11 +163,12 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
     }
     return import_memory(path, bytes.data(), bytes.size(), options, "");
   }
-  if (!detail::read_whole_file(path, bytes, options.max_bytes, error)) {
+  detail::FileBytes file;  // its own mapping when large: no hole left in the heap
+  if (!detail::read_whole_file(path, file, options.max_bytes, error)) {
     result.error = path + ": " + error;
     return result;
   }
-  return import_memory(path, bytes.data(), bytes.size(), options, directory_of(path));
+  return import_memory(path, file.data(), file.size(), options, directory_of(path));
 }
 
 std::vector<std::string> input_dependencies(const std::string& input) {

@@ -85,7 +85,7 @@ struct BakeResult {
 // each bake reuses the pages earlier stages and inputs touched instead of
 // faulting in fresh zeroed ones (a bake touches about 400 bytes per triangle;
 // fresh pages were a quarter of its time). Process-wide and for the process's
-// life: for tools that bake, not for a library's host to have imposed on it;
+// life (one heap for every thread, too): for tools that bake, not for a library's host to have imposed on it;
 // the resident size stays at the largest peak. No effect elsewhere (another C
 // library, a sanitizer's allocator). Returns whether it took effect.
 bool keep_memory_across_bakes();
