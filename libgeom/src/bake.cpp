@@ -12,6 +12,7 @@
 #include <malloc.h>
 #endif
 
+#include "geom/adjacency.h"
 #include "json_write.h"
 
 namespace geom {
@@ -165,6 +166,14 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
     po.halfedge = true;  // the report's
     po.release_early = true;
     po.timing = false;
+    if (out) {
+      // Streamed, the adjacency is built after the volume, when the volume's
+      // buffers are written and freed, from the edge table the volume read
+      // last; this bake frees each stage's tables itself as the pipeline
+      // would (release_early), the per-face edges kept for the adjacency.
+      po.adjacency = false;
+      po.release_early = false;
+    }
     const bool more = asked.esm || asked.volume || asked.adjacency || !lights.empty();  // past the topology
     const bool framed = asked.esm || asked.volume || !lights.empty();                   // buffers in the local frame
     if (out) {
@@ -222,6 +231,7 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
               free_vector(p.planes.planes);
               free_vector(p.planes.face_plane);
             }
+            if (out) free_vector(p.topology.face_component), free_vector(p.topology.face_flags);  // no stage reads them
             report_of(scene, p, r.report);
             r.report.file = name;
             if (options.topology_report) {
@@ -241,6 +251,7 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
             }
             break;
           case 2:
+            if (out && (!asked.esm || has("esm"))) free_vector(p.planes.normals);  // only the ESM quads read them
             if (!asked.esm) break;
             if (!has("esm")) return;
             emit(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept));
@@ -263,8 +274,15 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
             if (out && lights.empty()) p.volume = ShadowVolume();  // else the light volumes' source
             break;
           case 4:
+            if (out) {  // every stage that reads the edge table has run
+              if (asked.adjacency) {
+                p.adjacency.resize(adjacency_index_count(p.weld.indices.size() / 3));
+                build_adjacency(p.adjacency.data(), p.weld.indices.data(), p.weld.indices.size() / 3, p.topology);
+              }
+              free_vector(p.topology.face_edges), free_vector(p.topology.edges), free_vector(p.topology.edge_faces);
+            }
             if (!asked.adjacency) break;
-            if (!has("adjacency")) return;
+            if (!out && !has("adjacency")) return;
             js += "\"adjacency\":{\"indices\":" + json::count(p.adjacency.size()) + "},";
             emit(view_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", p.adjacency, kept));
             if (out) free_vector(p.adjacency);
