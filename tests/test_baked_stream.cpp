@@ -193,8 +193,7 @@ TEST(BakedStream, ComparesWithTheOutputThere) {
 
   // Anything else there: rewritten to the new bytes.
   std::vector<std::vector<unsigned char>> olds;
-  for (size_t at : {size_t(3), size_t(100), size_t(2000), want.size() / 3, want.size() / 2 + 12345,
-                    want.size() - 1}) {
+  for (size_t at : {size_t(3), size_t(100), size_t(2000), want.size() / 3, want.size() / 2 + 12345, want.size() - 1}) {
     std::vector<unsigned char> old = want;
     old[at] ^= 0x5a;
     olds.push_back(old);
@@ -262,9 +261,8 @@ TEST(BakedStream, GivenUpOrFailedLeavesNothing) {
   geom::BakedFileWriter writer;
   writer.open(path, false);
   ASSERT_TRUE(writer.expect(2));
-  const geom::BakedSection one = geom::make_baked_section(geom::baked::SectionType::Indices,
-                                                           geom::baked::Format::U32, 4, "one",
-                                                           std::vector<uint32_t>{1, 2, 3});
+  const geom::BakedSection one = geom::make_baked_section(geom::baked::SectionType::Indices, geom::baked::Format::U32,
+                                                          4, "one", std::vector<uint32_t>{1, 2, 3});
   ASSERT_TRUE(writer.put(one)) << writer.error();
   bool unchanged = true;
   EXPECT_FALSE(writer.finish(unchanged));  // one of the two sections

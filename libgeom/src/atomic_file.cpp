@@ -207,7 +207,8 @@ bool AtomicFile::commit(std::string& error) {
     }
     if (name_.empty()) return fail("cannot name the temporary file in '" + dir_ + "'");
   }
-  if (std::rename(name_.c_str(), path_.c_str()) != 0) return fail("cannot rename the temporary file to '" + path_ + "'");
+  if (std::rename(name_.c_str(), path_.c_str()) != 0)
+    return fail("cannot rename the temporary file to '" + path_ + "'");
   renamed_ = true;
   int dfd = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {

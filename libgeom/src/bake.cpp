@@ -202,9 +202,7 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
     int next = 0;
     std::string js = "{";
     const auto flush = [&](Pipeline& p, bool all) {
-      const auto has = [&](const char* stage) {
-        return all || std::find(ran.begin(), ran.end(), stage) != ran.end();
-      };
+      const auto has = [&](const char* stage) { return all || std::find(ran.begin(), ran.end(), stage) != ran.end(); };
       const WeldResult& w = p.weld;
       for (;; ++next) switch (next) {
           case 0:
@@ -212,7 +210,8 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
             if (options.positions)
               emit(view_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions, kept));
             if (options.indices) emit(view_section(SectionType::Indices, Format::U32, 4, "indices", w.indices, kept));
-            if (options.weld_remap) emit(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept));
+            if (options.weld_remap)
+              emit(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept));
             if (out) free_vector(p.weld.remap);  // no stage reads it
             break;
           case 1:

@@ -254,12 +254,11 @@ bool write_baked_if_changed(const std::string& path, const std::vector<BakedSect
   return true;
 }
 
-
 // ---- BakedFileWriter ----
 
 struct BakedFileWriter::State {
   std::string path;
-  int old_fd = -1;         // the file at `path`, while compared
+  int old_fd = -1;  // the file at `path`, while compared
   uint64_t old_size = 0;
   bool comparing = false;  // nothing written yet: every byte so far matches the old file
   AtomicFile file;
@@ -300,7 +299,8 @@ struct BakedFileWriter::State {
         if (r <= 0) return false;
         got += size_t(r);
       }
-      if (p ? std::memcmp(buffer.data(), p, k) != 0 : std::any_of(buffer.data(), buffer.data() + k, [](unsigned char c) { return c != 0; }))
+      if (p ? std::memcmp(buffer.data(), p, k) != 0
+            : std::any_of(buffer.data(), buffer.data() + k, [](unsigned char c) { return c != 0; }))
         return false;
       if (p) p += k;
       pos += k, n -= k;
@@ -393,8 +393,8 @@ bool BakedFileWriter::begin(const BakedSection& section, uint64_t size) {
   if (!check_section(s.entries.size(), section, size, e)) return s.fail(e);
   s.offset = align_up(s.at, baked::kDefaultAlignment);
   if (s.comparing && !s.old_holds(nullptr, s.at, s.offset - s.at) && !s.start_writing(s.at)) return false;
-  s.entries.push_back({section.type, section.format, section.stride, section.item, section.count, s.offset, size, 0,
-                       section.name});
+  s.entries.push_back(
+      {section.type, section.format, section.stride, section.item, section.count, s.offset, size, 0, section.name});
   s.in_section = true;
   s.size = size;
   s.done = 0;

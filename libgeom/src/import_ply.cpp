@@ -175,7 +175,6 @@ std::string number_or_end(const Body& body) {
   return p >= body.end ? "file ends early" : "bad value";
 }
 
-
 // One binary scalar at `p` as a double (`big`: big-endian).
 double load_scalar(PlyType t, const unsigned char* p, bool big) {
   const size_t n = type_size(t);

@@ -94,7 +94,6 @@ bool write_baked(const std::string& path, const std::vector<BakedSection>& secti
 bool write_baked_if_changed(const std::string& path, const std::vector<BakedSection>& sections, bool& unchanged,
                             std::string& error, std::vector<uint32_t>* crcs = nullptr);
 
-
 // The layout of write_baked written section by section, each as soon as it is
 // final, so that its buffer can be freed at once (geom/bake.h streams a bake
 // so): the sections go to a temporary file (geom/atomic_file.h, created at the
