@@ -81,13 +81,14 @@ struct BakeResult {
 };
 
 // Memory kept across the bakes of a batch: asks the C library's allocator (glibc)
-// to serve every allocation from its heap and never hand freed memory back, so
-// each bake reuses the pages earlier stages and inputs touched instead of
-// faulting in fresh zeroed ones (a bake touches about 400 bytes per triangle;
-// fresh pages were a quarter of its time). Process-wide and for the process's
-// life (one heap for every thread, too): for tools that bake, not for a library's host to have imposed on it;
-// the resident size stays at the largest peak. No effect elsewhere (another C
-// library, a sanitizer's allocator). Returns whether it took effect.
+// to serve every allocation of every thread from its one main heap and never
+// hand freed memory back, so each bake reuses the pages earlier stages and
+// inputs touched instead of faulting in fresh zeroed ones (a bake touches about
+// 300 bytes per triangle; fresh pages were a quarter of its time).
+// Process-wide and for the process's life: for tools that bake, not for a
+// library's host to have imposed on it; the resident size stays at the largest
+// peak. No effect elsewhere (another C library, a sanitizer's allocator).
+// Returns whether it took effect.
 bool keep_memory_across_bakes();
 
 // Bakes an imported scene; `name` is the input's name as the report shows it.
