@@ -100,7 +100,8 @@ bool FileBytes::place(size_t size) {
   clear();
   size_ = size;
   if (size >= kMapAt) {
-    void* m = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    // Populated at once (one call, not a fault per page): every byte is about to be read into.
+    void* m = ::mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
     if (m == MAP_FAILED) return false;
     map_ = m, map_size_ = size;
     data_ = static_cast<unsigned char*>(m);
