@@ -18,27 +18,30 @@ inline Vec3 unit(Vec3 a) { return normalize_or(a, Vec3{0, 0, 1}); }
 // std::lround(clamp(v) * 32767), inline (lround is a library call, 5% of a
 // small mesh's bake): the truncation toward zero is exact at these sizes, so
 // is the remainder, and halves go away from zero as lround's do.
+// Branch-free where the data decide (the signs and the rounding of each
+// normal are as good as random: a branch on them mispredicts every other call).
 inline int16_t snorm16(double v) {
   const double x = std::max(-1.0, std::min(1.0, v)) * 32767.0;
   const int t = int(x);
   const double r = x - double(t);
-  return int16_t(t + (r >= 0.5 ? 1 : r <= -0.5 ? -1 : 0));
+  return int16_t(t + int(r >= 0.5) - int(r <= -0.5));
+}
+
+inline void encode(const double v[3], int16_t out[2]) {
+  const double s = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  double x = s > 0 ? v[0] / s : 0, y = s > 0 ? v[1] / s : 0;
+  const double z = s > 0 ? v[2] / s : 1;
+  const double fx = (1 - std::fabs(y)) * (x >= 0 ? 1 : -1), fy = (1 - std::fabs(x)) * (y >= 0 ? 1 : -1);
+  const bool fold = z < 0;
+  x = fold ? fx : x;
+  y = fold ? fy : y;
+  out[0] = snorm16(x);
+  out[1] = snorm16(y);
 }
 
 }  // namespace
 
-void octahedral_encode(const double v[3], int16_t out[2]) {
-  const double s = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
-  double x = s > 0 ? v[0] / s : 0, y = s > 0 ? v[1] / s : 0;
-  const double z = s > 0 ? v[2] / s : 1;
-  if (z < 0) {
-    const double ox = x, oy = y;
-    x = (1 - std::fabs(oy)) * (ox >= 0 ? 1 : -1);
-    y = (1 - std::fabs(ox)) * (oy >= 0 ? 1 : -1);
-  }
-  out[0] = snorm16(x);
-  out[1] = snorm16(y);
-}
+void octahedral_encode(const double v[3], int16_t out[2]) { encode(v, out); }
 
 void octahedral_decode(const int16_t in[2], float v[3]) {
   // As shaders/esm_quad.vert: snorm16 attribute, then the octahedral unfold.
@@ -76,14 +79,13 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   };
   auto normal = [&](uint32_t f) { return Vec3{fp.normals[3 * f], fp.normals[3 * f + 1], fp.normals[3 * f + 2]}; };
   auto emit = [&](Vec3 p0, Vec3 p1, uint32_t pa, uint32_t pb, Vec3 q) {
-    EsmQuad e;
+    EsmQuad& e = r.quads.emplace_back();  // in place (one built aside and copied in stalls on its bytes)
     e.p0[0] = float(p0.x), e.p0[1] = float(p0.y), e.p0[2] = float(p0.z);
     e.p1[0] = float(p1.x), e.p1[1] = float(p1.y), e.p1[2] = float(p1.z);
     e.plane_a = pa;
     e.plane_b = pb;
     const double qd[3] = {q.x, q.y, q.z};
-    octahedral_encode(qd, e.q);
-    r.quads.push_back(e);
+    encode(qd, e.q);
   };
   const double bevel_dot = -std::cos(options.bevel_below_degrees * M_PI / 180.0);
 

@@ -62,6 +62,7 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
   const double cos_tol = std::cos(options.coplanar_degrees * M_PI / 180.0);
   const double dist_tol = options.coplanar_distance * r.diagonal;
   const bool have_edges = topology.face_edges.size() == 3 * triangle_count;
+  const bool have_twins = topology.face_twins.size() == 3 * triangle_count;
   std::vector<uint32_t> queue;
   r.planes.reserve(4 * (triangle_count - r.degenerate_faces));  // at most a plane per face: never grown
   for (size_t seed = 0; seed < triangle_count; ++seed) {
@@ -78,11 +79,19 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
     for (size_t qi = 0; qi < queue.size(); ++qi) {
       const uint32_t g = queue[qi];
       for (int k = 0; k < 3; ++k) {
-        const uint32_t e = topology.face_edges[3 * size_t(g) + k];
-        if (e == Topology::kNone || topology.edges[e].kind != EdgeKind::Manifold) continue;
-        const Edge& edge = topology.edges[e];
-        uint32_t h = topology.edge_faces[edge.first] >> 1;
-        if (h == g) h = topology.edge_faces[edge.first + 1] >> 1;
+        uint32_t h;
+        if (have_twins) {  // the other face of a two-faced edge, run the other way (a manifold edge)
+          const size_t s = 3 * size_t(g) + k;
+          const uint32_t tw = topology.face_twins[s];
+          if (tw == Topology::kNone || indices[tw] == indices[s]) continue;
+          h = tw / 3;
+        } else {
+          const uint32_t e = topology.face_edges[3 * size_t(g) + k];
+          if (e == Topology::kNone || topology.edges[e].kind != EdgeKind::Manifold) continue;
+          const Edge& edge = topology.edges[e];
+          h = topology.edge_faces[edge.first] >> 1;
+          if (h == g) h = topology.edge_faces[edge.first + 1] >> 1;
+        }
         if (r.face_plane[h] != FacePlanes::kNone) continue;
         const double* m = &r.normals[3 * size_t(h)];
         if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < cos_tol) continue;  // also rejects degenerate (0)

@@ -46,6 +46,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   s.triangles = triangle_count;
   t.face_flags.assign(triangle_count, 0);
   t.face_edges.assign(triangle_count * 3, Topology::kNone);
+  t.face_twins.assign(triangle_count * 3, Topology::kNone);
   t.face_component.assign(triangle_count, Topology::kNone);
 
   // Collapsed faces, and the half-edge count per smaller vertex.
@@ -88,21 +89,50 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     HalfEdge* e = half.data() + start[v0 + 1];
     if (b == e) continue;
     uint64_t compared = 0;
-    std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
-      ++compared;
-      return x.other != y.other ? x.other < y.other : x.face < y.face;  // a face meets (v0, other) once
-    });
+    if (e - b <= 16) {
+      // The bucket was filled in triangle order, so a stable sort by the
+      // larger vertex alone gives the (other, face) order: insertion sort
+      // (the usual bucket holds about six).
+      for (HalfEdge* i = b + 1; i < e; ++i) {
+        const HalfEdge x = *i;
+        HalfEdge* j = i;
+        for (; j > b && (++compared, j[-1].other > x.other); --j) *j = j[-1];
+        *j = x;
+      }
+    } else {
+      std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
+        ++compared;
+        return x.other != y.other ? x.other < y.other : x.face < y.face;  // a face meets (v0, other) once
+      });
+    }
     detail::count_work(compared + uint64_t(e - b));
     for (HalfEdge* run = b; run != e;) {
       HalfEdge* end = run;
       while (end != e && end->other == run->other) ++end;
-      Edge edge{uint32_t(v0),    run->other, uint32_t(t.edge_faces.size()), uint32_t(end - run), EdgeKind::Boundary,
-                EdgeShape::None, 0.0f};
+      // Written in place, field by field (a whole Edge built aside and
+      // copied in stalls on its partly written bytes).
       const uint32_t id = uint32_t(t.edges.size());
+      const uint32_t face_count = uint32_t(end - run);
+      Edge& edge = t.edges.emplace_back();
+      edge.v0 = uint32_t(v0);
+      edge.v1 = run->other;
+      edge.first = uint32_t(t.edge_faces.size());
+      edge.face_count = face_count;
+      edge.kind = face_count == 1   ? EdgeKind::Boundary
+                  : face_count >= 3 ? EdgeKind::NonManifold
+                  : run[0].reversed != run[1].reversed ? EdgeKind::Manifold
+                                                       : EdgeKind::Inconsistent;
+      edge.shape = EdgeShape::None;
+      edge.dihedral_degrees = 0.0f;
+      if (face_count == 2) {
+        const uint32_t s0 = 3 * run[0].face + run[0].k, s1 = 3 * run[1].face + run[1].k;
+        t.face_twins[s0] = s1;
+        t.face_twins[s1] = s0;
+      }
       for (HalfEdge* h = run; h != end; ++h) {
         t.edge_faces.push_back(h->face << 1 | h->reversed);
         t.face_edges[3 * size_t(h->face) + h->k] = id;
-        if (edge.face_count < 2) continue;
+        if (face_count < 2) continue;
         const uint32_t third = h->third;
         if (h->k == 0 && seen_at[third] == id) {
           t.face_flags[h->face] |= kFaceDuplicate;
@@ -110,11 +140,6 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
         }
         seen_at[third] = id;
       }
-      if (edge.face_count == 2)
-        edge.kind = run[0].reversed != run[1].reversed ? EdgeKind::Manifold : EdgeKind::Inconsistent;
-      else if (edge.face_count >= 3)
-        edge.kind = EdgeKind::NonManifold;
-      t.edges.push_back(edge);
       run = end;
     }
   }
