@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "live_faces.h"
 #include "vec3.h"
 
 namespace geom {
@@ -65,11 +66,17 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   for (int a = 0; a < 3; ++a) r.origin[a] = fp.origin[a];
   st.edges = topology.edges.size();
   std::vector<uint32_t> remap(fp.plane_count(), FacePlanes::kNone);
+  // Room is reserved below: four plain stores (a range insert is a
+  // general-purpose call per plane).
+  auto push_plane = [&](float a, float b, float c, float d) {
+    r.planes.push_back(a), r.planes.push_back(b), r.planes.push_back(c), r.planes.push_back(d);
+  };
   auto plane_of = [&](uint32_t face) {
     const uint32_t p = fp.face_plane[face];
     if (remap[p] == FacePlanes::kNone) {
       remap[p] = uint32_t(r.planes.size() / 4);
-      r.planes.insert(r.planes.end(), fp.planes.begin() + 4 * size_t(p), fp.planes.begin() + 4 * size_t(p) + 4);
+      const float* q = fp.planes.data() + 4 * size_t(p);
+      push_plane(q[0], q[1], q[2], q[3]);
     }
     return remap[p];
   };
@@ -101,13 +108,9 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
     r.quads.reserve(quads);
     r.planes.reserve(planes);
   }
-  std::vector<uint32_t> live;
+  detail::LiveFaces live;
   for (const Edge& e : topology.edges) {
-    live.clear();
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      const uint32_t ef = topology.edge_faces[e.first + i];
-      if (fp.face_plane[ef >> 1] != FacePlanes::kNone) live.push_back(ef);
-    }
+    live.gather(topology, fp, e);
     if (live.empty()) continue;
     ++st.candidate_edges;
     const Vec3 v0 = pos(e.v0), v1 = pos(e.v1);
@@ -140,7 +143,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         const Vec3 nbev = length(s) > 1e-6 ? unit(s) : unit(cross(p1 - p0, na));
         const Vec3 mid = (p0 + p1) * 0.5;
         const uint32_t pbev = uint32_t(r.planes.size() / 4);
-        r.planes.insert(r.planes.end(), {float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid))});
+        push_plane(float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid)));
         emit(p0, p1, pa, pbev, unit(na + nbev));
         emit(p0, p1, pbev, pb, unit(nbev + nb));
         ++st.bevel_edges;
@@ -156,7 +159,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         const Vec3 n = normal(f), u = unit(cross(p1 - p0, n));
         const uint32_t pa = plane_of(f), pbev = uint32_t(r.planes.size() / 4);
         const Vec3 mid = (p0 + p1) * 0.5;
-        r.planes.insert(r.planes.end(), {float(u.x), float(u.y), float(u.z), float(-dot(u, mid))});
+        push_plane(float(u.x), float(u.y), float(u.z), float(-dot(u, mid)));
         emit(p0, p1, pa, pbev, unit(n + u));
         emit(p0, p1, pbev, pa | EsmQuad::kFlip, unit(u - n));
         ++st.bevel_edges;

@@ -72,7 +72,8 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
     local(indices[3 * seed], p0);
     const double d = -(n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2]);
     const uint32_t id = uint32_t(r.plane_count());
-    r.planes.insert(r.planes.end(), {float(n[0]), float(n[1]), float(n[2]), float(d)});
+    r.planes.push_back(float(n[0])), r.planes.push_back(float(n[1]));  // reserved: plain stores
+    r.planes.push_back(float(n[2])), r.planes.push_back(float(d));
     r.face_plane[seed] = id;
     if (!have_edges) continue;
     queue.assign(1, uint32_t(seed));

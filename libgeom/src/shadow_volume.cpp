@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "live_faces.h"
 #include "vec3.h"
 
 namespace geom {
@@ -40,15 +41,9 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
   // when each of its edges has exactly two such faces in opposite directions.
   std::vector<uint32_t> parent(triangle_count);
   for (size_t f = 0; f < triangle_count; ++f) parent[f] = uint32_t(f);
-  std::vector<uint32_t> live;  // the non-degenerate faces of one edge, as edge_faces entries
+  detail::LiveFaces live;  // the non-degenerate faces of one edge, as edge_faces entries
   std::vector<uint8_t> open_root(triangle_count, 0);
-  auto gather = [&](const Edge& e) {
-    live.clear();
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      const uint32_t ef = topology.edge_faces[e.first + i];
-      if (has_plane(ef >> 1)) live.push_back(ef);
-    }
-  };
+  auto gather = [&](const Edge& e) { live.gather(topology, fp, e); };
   auto is_pair = [&]() { return live.size() == 2 && ((live[0] ^ live[1]) & 1u); };
   std::vector<uint32_t> open_faces;  // a face of each edge that is not a pair: its component is open
   for (const Edge& e : topology.edges) {
