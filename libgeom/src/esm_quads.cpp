@@ -100,11 +100,16 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   // otherwise two quads and a plane per face), so the buffers never grow
   // (a grown vector copies itself; the unused tail is never paged in).
   {
-    size_t quads = 0, planes = 4 * fp.plane_count();
-    for (const Edge& e : topology.edges) {
-      quads += e.face_count == 2 ? 2 : 2 * size_t(e.face_count);
-      planes += 4 * (e.face_count == 2 ? 1 : size_t(e.face_count));
+    // Sums over the edges, from the table's totals: every face entry, less
+    // one per edge of two faces (a manifold or inconsistent edge).
+    const TopologyStats& ts = topology.stats;
+    size_t pairs = size_t(ts.manifold_edges + ts.inconsistent_edges);
+    if (ts.edges != topology.edges.size()) {  // stats not filled in: count
+      pairs = 0;
+      for (const Edge& e : topology.edges) pairs += e.face_count == 2;
     }
+    const size_t entries = topology.edge_faces.size();
+    const size_t quads = 2 * (entries - pairs), planes = 4 * fp.plane_count() + 4 * (entries - pairs);
     r.quads.reserve(quads);
     r.planes.reserve(planes);
   }

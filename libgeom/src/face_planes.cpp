@@ -15,15 +15,18 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
   r.normals.assign(triangle_count * 3, 0.0);
 
   // Local frame: the centre of the bounding box of every referenced vertex.
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  // In float (widening is exact and keeps the order, so the bounds are the
+  // same), widened once.
+  float lof[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hif[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
   for (size_t i = 0; i < 3 * triangle_count; ++i) {
     const Float3& p = positions[indices[i]];
-    const double c[3] = {p.x, p.y, p.z};
+    const float c[3] = {p.x, p.y, p.z};
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], c[a]);
-      hi[a] = std::max(hi[a], c[a]);
+      lof[a] = std::min(lof[a], c[a]);
+      hif[a] = std::max(hif[a], c[a]);
     }
   }
+  const double lo[3] = {lof[0], lof[1], lof[2]}, hi[3] = {hif[0], hif[1], hif[2]};
   if (triangle_count == 0) return r;
   double diag2 = 0;
   for (int a = 0; a < 3; ++a) {

@@ -78,8 +78,7 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
   // Side records, in edge order; room for the most (a pair: two records, else
   // one per face), so the buffers never grow.
   {
-    size_t most = 0;
-    for (const Edge& e : topology.edges) most += e.face_count == 2 ? 2 : e.face_count;
+    const size_t most = topology.edge_faces.size();  // the sum of those over the edges
     sv.sides.reserve(most);
     sv.side_component.reserve(most);
   }

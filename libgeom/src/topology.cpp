@@ -214,9 +214,10 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     if (t.face_flags[f] & kFaceCollapsed) continue;
     const uint32_t* v = indices + 3 * f;
     used[v[0]] = used[v[1]] = used[v[2]] = 1;
+    uint32_t r0 = find_root(parent, v[0]);  // a set's root is its least vertex
     for (int k = 1; k < 3; ++k) {
-      uint32_t r0 = find_root(parent, v[0]), r1 = find_root(parent, v[k]);
-      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);
+      const uint32_t r1 = find_root(parent, v[k]);
+      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1), r0 = std::min(r0, r1);
     }
   }
   for (size_t i = 0; i < vn; ++i) s.vertices += used[i];
