@@ -25,6 +25,8 @@
 //               interpolated across the quad (0 on the edge itself)
 //   v_edge      flat: the edge's endpoints in clip space (xy / w), for the
 //               fragment's signed distance to the silhouette edge
+//   v_edge_z    flat: their clip depths (z / w), for the edge's own light depth
+//               at the fragment's foot on it (esm_exact_edges.frag)
 layout(location = 0) in vec3 a_p0;
 layout(location = 1) in vec3 a_p1;
 layout(location = 2) in uint a_plane_a;
@@ -38,6 +40,7 @@ uniform samplerBuffer u_planes;
 
 out float v_side;
 flat out vec4 v_edge;
+flat out vec2 v_edge_z;
 
 const uint kFlip = 0x80000000u;
 
@@ -76,5 +79,6 @@ void main() {
   v_side = front ? 1.0 : -0.5;
   vec4 e0 = m * vec4(a_p0, 1.0), e1 = m * vec4(a_p1, 1.0);
   v_edge = vec4(e0.xy / e0.w, e1.xy / e1.w);
+  v_edge_z = vec2(e0.z / e0.w, e1.z / e1.w);
   gl_Position = m * vec4(p + q * offset, 1.0);
 }

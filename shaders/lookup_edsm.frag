@@ -1,28 +1,54 @@
 #version 450 core
-// Edge distance shadow map lookup (001, Kenzel, Sect. 4.2.2). The depth
-// comparisons of the 2 x 2 texel footprint (textureGather on the comparison
-// sampler) say whether the sample is fully lit, fully shadowed or near a
-// silhouette (the filtered comparison strictly between 0 and 1); there the
-// signed edge distance is reconstructed by bilinear interpolation of the
-// distance map (Sect. 3.1.1: exact for one straight edge) and its sign decides:
-// positive = the occluder's side = shadow. Two fallbacks to the nearest
-// texel's comparison (a simple shadow map's answer) are kept for the thesis's
-// Sect. 5.2 failure cases, each measured (geombench, 640x480):
-//  - two of the four texels hold no edge, or an edge whose side disagrees with
-//    their own comparison (crossing shadows, a receiver's outline and a
-//    caster's edge in one texel: Sect. 5.2): too little to reconstruct. One
-//    such texel is replaced by the plane through the other three (below): on
-//    jenga error_cast 0.648 / 0.272 / 0.086% at 512 / 1024 / 2048 with the
-//    nearest texel's comparison for it too, 0.355 / 0.138 / 0.034% with the
-//    plane (ssm 1.680 / 0.630 / 0.203%); without any such check jenga@512 was
-//    5.60% (before the depth-resolved priority);
-//  - the receiver is not behind the stored edges (1e-4 window depth): its own
-//    outline, where the comparison is partial from its slope alone. Without it
-//    jenga@512 0.62% (with it 0.65%), default@512 0.006% (0.014%), but the
-//    wide-depth alley@1024 8.2% against 2.7% with it (ssm 3.4%): kept.
+// Edge distance shadow map lookup (001, Kenzel, Sect. 4.2.2) with two edges
+// per texel, the thesis's own remedy for Sect. 5.2 (Sect. 6.1: "more than one
+// channel to store the distance to more than one edge"; the map is
+// shaders/edsm_edges.frag: per texel the two nearest edges as lines, distance
+// from the texel's centre and normal angle, with their light depths).
+// The depth comparisons of the 2 x 2 texel footprint (textureGather on the
+// comparison sampler) say whether the sample is fully lit, fully shadowed or
+// near a silhouette (the filtered comparison strictly between 0 and 1). There:
+//  1. Only edges in front of the receiver take part (kInFront): an edge at the
+//     receiver's depth is its own outline and casts nothing on it. No such
+//     edge in any of the four texels: lit (the comparisons differ from the
+//     receiver's own slope or outline alone). This replaces the nearest
+//     comparison of the earlier lookup there, whose acne made the default
+//     scene's 15-45 wrong pixels (the block tower's receiver outlines) and
+//     most of wide-depth's (2.35% at 2048, now 0.027%).
+//  2. Each texel's first edge in front gives its signed distance at the texel's
+//     centre; where all four agree in side with their own comparisons the
+//     bilinear interpolation decides (Sect. 3.1.1: exact for one straight
+//     edge). One texel that does not, or holds no edge in front, takes the
+//     plane through the other three (a straight edge's distance is linear),
+//     unless it is the texel nearest the sample (then step 3).
+//  3. Otherwise (Sect. 5.2: corners, edges closer than 2 texels) the thesis
+//     proposes testing each edge separately and combining the results, e.g.
+//     by a logical AND. Every line in front (up to 8) is evaluated exactly at
+//     the sample and at the four texel centres: inside all of them (AND: a
+//     convex corner, a strip) or inside any (OR: two occluders, a concave
+//     corner), whichever agrees with the footprint's four comparisons (one
+//     disagreeing texel allowed if it is not the nearest; AND first).
+//  4. Neither: each texel votes with its own first line at the sample (its
+//     comparison where it has none), bilinearly weighted.
+// Measured (geombench, 640x480, error_cast in % of the class; ssm 1.680 /
+// 0.630 / 0.204 on jenga at 512 / 1024 / 2048): the earlier one-edge lookup
+// (bilinear distance, plane for one odd texel, nearest comparison for two or
+// for a receiver not behind the edges) 0.355 / 0.138 / 0.034; two edges with
+// steps 1 and 3 only (no bilinear step, nearest comparison as the last
+// resort) 0.976 / 0.142 / 0.032; with step 2 0.320 at 512; the last resort
+// lit instead of nearest 0.240 / - / 0.006, the vote (step 4) 0.245 / 0.057 /
+// 0.006; the OR without the one-miss allowance 0.156 at 512 but scan's cast
+// error 0.0054% against ssm's 0.0008%; the nearest-texel conditions 0.164 /
+// 0.058 / 0.006; with the edge priority's depth weight 0.85 (edsm_edges.frag)
+// 0.120 / 0.055 / 0.006. Tried and not kept: a strip test for fully lit or
+// fully shadowed footprints (a thin occluder or gap between texel centres:
+// jenga 0.125 against 0.120); kInFront 1e-4 / 1e-5 / 0 (scan@2048
+// error_visible 0.028 / 0.011 / 0.003%, jenga the same; 2e-6 gives 0.005%).
 vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and its clip position
 uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
-uniform sampler2DArray u_distance_map;      // RG32F: signed distance in texels, edge depth
+uniform usampler2DArray u_distance_map;     // RGBA32UI: (line, depth bits) x 2 per texel
+
+const float kPi = 3.14159265358979;
+const float kInFront = 2.0e-6;  // window depth: an edge this far in front of the receiver can shadow it
 
 float shadow_visibility(vec3 world, vec3 normal) {
   int layer;
@@ -36,31 +62,55 @@ float shadow_visibility(vec3 world, vec3 normal) {
   vec2 f = tc - floor(tc);
   // The comparisons of the 2 x 2 footprint (gather order: (0,1) (1,1) (1,0) (0,0)).
   vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(layer)), p.z);
-  float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
   if (all(equal(g, vec4(g.x)))) return g.x;  // fully lit or fully shadowed
-  float d[4];
-  float edge_depth = 0.0;
-  vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
-  int odd = -1, odd_count = 0;
+  vec4 lit = vec4(g.w, g.z, g.x, g.y);       // footprint order (0,0) (1,0) (0,1) (1,1)
+  int kn = (f.x < 0.5 ? 0 : 1) + (f.y < 0.5 ? 0 : 2);  // the texel nearest the sample
+  // The lines in front of the receiver, evaluated at the four texel centres
+  // (offsets (0,0) (1,0) (0,1) (1,1) in texels) and at the sample (f).
+  vec4 and_c = vec4(1.0e9), or_c = vec4(-1.0e9);
+  float and_p = 1.0e9, or_p = -1.0e9;
+  float d[4];               // each texel's first line in front: its distance at the texel's centre
+  vec4 dp = vec4(1.0e9);    // and at the sample
+  int odd = -1, odd_count = 0, lines = 0;
   for (int k = 0; k < 4; ++k) {
-    vec2 t = texelFetch(u_distance_map, ivec3(clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), layer), 0).rg;
-    bool bad = abs(t.r) > 1.0e6 || (t.r <= 0.0) != (lit[k] > 0.5);
-    d[k] = t.r;
-    if (bad) {
-      odd = k, ++odd_count;
-    } else {
-      edge_depth = max(edge_depth, t.g);
+    ivec2 o = ivec2(k & 1, k >> 1);
+    uvec4 t = texelFetch(u_distance_map, ivec3(clamp(i + o, ivec2(0), size - 1), layer), 0);
+    d[k] = 1.0e9;
+    for (int e = 0; e < 2; ++e) {
+      uint bits = e == 0 ? t.y : t.w;
+      if (bits == 0xFFFFFFFFu || uintBitsToFloat(bits) + kInFront > p.z) continue;  // none, or not in front
+      vec2 l = unpackUnorm2x16(e == 0 ? t.x : t.z);
+      float dist = (l.x - 0.5) * 16.0, a = (l.y - 0.5) * 2.0 * kPi;
+      vec2 n = vec2(cos(a), sin(a)), origin = vec2(o);
+      vec4 at_c = dist + vec4(dot(n, -origin), dot(n, vec2(1, 0) - origin), dot(n, vec2(0, 1) - origin),
+                              dot(n, vec2(1, 1) - origin));
+      float at_p = dist + dot(n, f - origin);
+      and_c = min(and_c, at_c), or_c = max(or_c, at_c);
+      and_p = min(and_p, at_p), or_p = max(or_p, at_p);
+      if (d[k] == 1.0e9) d[k] = dist, dp[k] = at_p;
+      ++lines;
     }
+    if (d[k] == 1.0e9 || (d[k] <= 0.0) != (lit[k] > 0.5)) odd = k, ++odd_count;
   }
-  if (odd_count > 1) return nearest;
-  if (p.z <= edge_depth + 1.0e-4) return nearest;  // the receiver's own outline
-  // Each texel's side of its edge must agree with its own depth comparison
-  // (crossing shadows: a texel on an edge's lit side may be shadowed by another
-  // occluder; a receiver's outline and a caster's edge in one texel). One texel
-  // that does not, or holds no edge, takes the value of the plane through the
-  // other three: a straight edge's signed distance is linear, so three texels
-  // give it whole (a 2 x 2 footprint has one more sample than a line needs).
-  if (odd >= 0) d[odd] = d[odd ^ 1] + d[odd ^ 2] - d[odd ^ 3];
-  float dist = mix(mix(d[0], d[1], f.x), mix(d[2], d[3], f.x), f.y);
-  return dist > 0.0 ? 0.0 : 1.0;
+  if (lines == 0) return 1.0;  // 1. no edge in front of the receiver
+  if (odd_count == 0 || (odd_count == 1 && odd != kn)) {  // 2. one straight edge
+    if (odd >= 0) d[odd] = d[odd ^ 1] + d[odd ^ 2] - d[odd ^ 3];
+    float dist = mix(mix(d[0], d[1], f.x), mix(d[2], d[3], f.x), f.y);
+    return dist > 0.0 ? 0.0 : 1.0;
+  }
+  // 3. The lines combined, AND or OR, as the footprint's comparisons say.
+  bvec4 shadowed = lessThan(lit, vec4(0.5));
+  bvec4 and_in = greaterThan(and_c, vec4(0.0)), or_in = greaterThan(or_c, vec4(0.0));
+  int and_miss = 0, or_miss = 0;
+  for (int k = 0; k < 4; ++k) {
+    and_miss += and_in[k] != shadowed[k] ? 1 : 0;
+    or_miss += or_in[k] != shadowed[k] ? 1 : 0;
+  }
+  if (and_miss <= or_miss && (and_miss == 0 || (and_miss == 1 && and_in[kn] == shadowed[kn])))
+    return and_p > 0.0 ? 0.0 : 1.0;
+  if (or_miss == 0 || (or_miss == 1 && or_in[kn] == shadowed[kn])) return or_p > 0.0 ? 0.0 : 1.0;
+  // 4. Each texel's vote: its first line in front at the sample, else its comparison.
+  vec4 v = mix(lit, vec4(lessThanEqual(dp, vec4(0.0))), vec4(lessThan(dp, vec4(1.0e8))));
+  float w = mix(mix(v.x, v.y, f.x), mix(v.z, v.w, f.x), f.y);
+  return w >= 0.5 ? 1.0 : 0.0;
 }

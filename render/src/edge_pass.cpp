@@ -26,6 +26,17 @@ void begin_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target) {
       glClear(GL_DEPTH_BUFFER_BIT);
       break;
     }
+    case EdgeTarget::EdgePair: {
+      const GLuint none[4] = {0, 0xFFFFFFFFu, 0, 0xFFFFFFFFu};
+      glClearNamedFramebufferuiv(s.edge_map.fbo, GL_COLOR, 0, none);
+      glClearDepth(1.0);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      break;
+    }
+    case EdgeTarget::EdgeSecond:
+      glClearDepth(1.0);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      break;
     case EdgeTarget::Silhouette: {
       const GLuint centre[4] = {0, 0, 0, 0};  // the default point: the cell's centre; no edge depth
       glClearNamedFramebufferuiv(s.edge_map.fbo, GL_COLOR, 0, centre);

@@ -12,7 +12,9 @@ namespace render {
 
 // How the edge map starts and blends.
 enum class EdgeTarget {
-  Distance,     // edsm, edsm-soft: RG32F cleared to 3e38 ("no edge yet") and depth-tested
+  Distance,     // edsm-soft, esm-exact: RG32F cleared to 3e38 ("no edge yet") and depth-tested
+  EdgePair,     // edsm, first edge: RGBA32UI cleared to "no edge" (depth bits all ones) and depth-tested
+  EdgeSecond,   // edsm, second edge (peeled): the first pass's colours kept, depth cleared and tested
   Silhouette,   // sssm: RG32UI cleared to 0 (the cell's centre) and depth-tested from 1
   ExtendedMax,  // esm: cleared to 0, no depth test, MAX blending (seed 000, Sect. 4.1)
 };

@@ -76,9 +76,9 @@ bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& lig
     for (int i = 0; i < 6; ++i) f.face_clip[i] = face_matrix(L, i, n, near_plane, far_plane);
     f.light_frame.proj = f.face_clip[4], f.light_frame.view = glm::mat4(1);
   }
+  ensure_arrays(s, n, f.faces, edge_format);  // before the faces: edsm's second edge pass reads its layer
   for (int i = 0; i < f.faces; ++i) {
     if (!draw_face(f, f.face_clip[i])) return false;
-    if (i == 0) ensure_arrays(s, n, f.faces, edge_format);
     copy_face(s, n, i);
   }
   f.shadow_texture = s.face_depth;
