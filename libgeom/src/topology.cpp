@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "vec3.h"
@@ -61,7 +62,9 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     for (int k = 0; k < 3; ++k) ++start[std::min(v[k], v[(k + 1) % 3]) + 1];
   }
   for (size_t i = 0; i < vn; ++i) start[i + 1] += start[i];
-  std::vector<HalfEdge> half(start[vn]);
+  // Every entry is written below: storage without the zero fill.
+  const size_t half_count = start[vn];
+  std::unique_ptr<HalfEdge[]> half(new HalfEdge[half_count]);
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t f = 0; f < triangle_count; ++f) {
@@ -70,7 +73,8 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       for (int k = 0; k < 3; ++k) {
         uint32_t a = v[k], b = v[(k + 1) % 3];
         uint32_t lo = std::min(a, b), hi = std::max(a, b);
-        half[fill[lo]++] = {hi, uint32_t(f), v[(k + 2) % 3], uint8_t(k), uint8_t(a > b)};
+        HalfEdge& h = half[fill[lo]++];  // field by field, in place
+        h.other = hi, h.face = uint32_t(f), h.third = v[(k + 2) % 3], h.k = uint8_t(k), h.reversed = uint8_t(a > b);
       }
     }
   }
@@ -81,12 +85,12 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   // order) a face whose first edge this is is a duplicate when an earlier face
   // of the edge had its third vertex (`seen_at`: the last edge that saw a
   // vertex as a third vertex). Linear however many faces share the edge.
-  t.edges.reserve(half.size() / 2 + 16);
-  t.edge_faces.reserve(half.size());
+  t.edges.reserve(half_count / 2 + 16);
+  t.edge_faces.reserve(half_count);
   std::vector<uint32_t> seen_at(vn, Topology::kNone);
   for (size_t v0 = 0; v0 < vn; ++v0) {
-    HalfEdge* b = half.data() + start[v0];
-    HalfEdge* e = half.data() + start[v0 + 1];
+    HalfEdge* b = half.get() + start[v0];
+    HalfEdge* e = half.get() + start[v0 + 1];
     if (b == e) continue;
     uint64_t compared = 0;
     if (e - b <= 16) {
@@ -118,8 +122,8 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       edge.v1 = run->other;
       edge.first = uint32_t(t.edge_faces.size());
       edge.face_count = face_count;
-      edge.kind = face_count == 1   ? EdgeKind::Boundary
-                  : face_count >= 3 ? EdgeKind::NonManifold
+      edge.kind = face_count == 1                      ? EdgeKind::Boundary
+                  : face_count >= 3                    ? EdgeKind::NonManifold
                   : run[0].reversed != run[1].reversed ? EdgeKind::Manifold
                                                        : EdgeKind::Inconsistent;
       edge.shape = EdgeShape::None;
@@ -143,7 +147,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       run = end;
     }
   }
-  std::vector<HalfEdge>().swap(half);
+  half.reset();
 
   // Face normals (double precision from the float input); zero-area faces.
   std::vector<Vec3> normal(triangle_count, Vec3{0, 0, 0});
