@@ -5,6 +5,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/random.h>
@@ -49,7 +50,37 @@ void release_slot(int i) {
   if (i >= 0) g_slots[i].state.store(0);
 }
 
+// A temporary name being created (its slot claimed, the file not yet made or
+// linked) by how many threads; after a fatal signal none starts (g_dying).
+// The handler waits for those under way before it removes the named files, so
+// a file made while it runs cannot outlive the process; a creating thread
+// blocks the fatal signals meanwhile, so the handler never runs on it.
+std::atomic<int> g_creating{0};
+std::atomic<int> g_dying{0};
+
+// Blocks the fatal signals in this thread and counts it as creating; false
+// (nothing to undo but the mask: end() still) if the process is dying.
+struct Creating {
+  sigset_t old;
+  bool ok = false;
+  Creating() {
+    sigset_t fatal;
+    sigemptyset(&fatal);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&fatal, sig);
+    pthread_sigmask(SIG_BLOCK, &fatal, &old);
+    g_creating.fetch_add(1);
+    ok = g_dying.load() == 0;
+  }
+  ~Creating() {
+    g_creating.fetch_sub(1);
+    pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  }
+};
+
 extern "C" void on_fatal_signal(int sig) {
+  g_dying.store(1);
+  for (long spin = 0; g_creating.load() > 0 && spin < 2000000000L; ++spin) {
+  }
   for (Slot& s : g_slots)
     if (s.state.load() == 2) ::unlink(s.path);
   ::signal(sig, SIG_DFL);
@@ -101,9 +132,11 @@ bool write_parts(int fd, const FilePart* parts, size_t count) {
 }
 
 // Creates a locked temporary file in `dir`: unnamed if it can (name left
-// empty), else under a fresh random name. -1 with errno set on failure.
-int create_temp(const std::string& dir, std::string& name) {
+// empty), else under a fresh random name, its signal slot in `slot` (kept:
+// no moment when the named file is in no slot). -1 with errno set on failure.
+int create_temp(const std::string& dir, std::string& name, int& slot_out) {
   name.clear();
+  slot_out = -1;
   static const bool no_tmpfile = std::getenv("GEOM_NO_O_TMPFILE") != nullptr;  // tests the fallback
   if (!no_tmpfile) {
     int fd = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
@@ -116,6 +149,11 @@ int create_temp(const std::string& dir, std::string& name) {
   }
   for (int attempt = 0; attempt < 100; ++attempt) {
     std::string candidate = random_name(dir);
+    const Creating creating;
+    if (!creating.ok) {
+      errno = EINTR;
+      return -1;
+    }
     int slot = claim_slot(candidate);
     int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0) {
@@ -128,8 +166,8 @@ int create_temp(const std::string& dir, std::string& name) {
     struct stat a, b;
     if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::fstat(fd, &a) == 0 && ::lstat(candidate.c_str(), &b) == 0 &&
         a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
-      release_slot(slot);
       name = candidate;
+      slot_out = slot;
       return fd;
     }
     ::close(fd);
@@ -146,7 +184,13 @@ bool write_file_atomically(const std::string& path, const void* data, size_t siz
   return write_file_atomically(path, &part, 1, error);
 }
 
-bool write_file_atomically(const std::string& path, const FilePart* parts, size_t count, std::string& error) {
+AtomicFile::~AtomicFile() {
+  if (!renamed_ && !name_.empty()) ::unlink(name_.c_str());
+  release_slot(slot_);
+  if (fd_ >= 0) ::close(fd_);  // the lock goes with it, after the rename
+}
+
+bool AtomicFile::open(const std::string& path, std::string& error) {
   if (path.empty()) {
     error = "the output path is empty";
     return false;
@@ -161,58 +205,69 @@ bool write_file_atomically(const std::string& path, const FilePart* parts, size_
     return false;
   }
   const size_t slash = path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-  // Whatever happens from here (an error, an exception), the temporary file
-  // goes unless it was renamed.
-  struct Temp {
-    int fd = -1, slot = -1;
-    std::string name;
-    bool renamed = false;
-    ~Temp() {
-      if (!renamed && !name.empty()) ::unlink(name.c_str());
-      release_slot(slot);
-      if (fd >= 0) ::close(fd);  // the lock goes with it, after the rename
-    }
-  } t;
-  t.fd = create_temp(dir, t.name);
-  if (t.fd < 0) {
-    error = "cannot create a temporary file in '" + dir + "': " + std::strerror(errno);
+  path_ = path;
+  dir_ = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+  fd_ = create_temp(dir_, name_, slot_);
+  if (fd_ < 0) {
+    error = "cannot create a temporary file in '" + dir_ + "': " + std::strerror(errno);
     return false;
   }
-  t.slot = t.name.empty() ? -1 : claim_slot(t.name);
+  return true;
+}
+
+bool AtomicFile::commit(std::string& error) {
   auto fail = [&](const std::string& what) {
     error = what + ": " + std::strerror(errno);
     return false;
   };
-  if (!write_parts(t.fd, parts, count)) return fail("cannot write '" + path + "'");
-  if (::fsync(t.fd) != 0) return fail("cannot flush '" + path + "'");
-  if (t.name.empty()) {  // give the unnamed file a random name, then rename it
-    const std::string proc = "/proc/self/fd/" + std::to_string(t.fd);
-    for (int attempt = 0; attempt < 100 && t.name.empty(); ++attempt) {
-      std::string candidate = random_name(dir);
-      t.slot = claim_slot(candidate);
+  if (fd_ < 0) {
+    errno = EBADF;
+    return fail("cannot write '" + path_ + "'");
+  }
+  if (::fsync(fd_) != 0) return fail("cannot flush '" + path_ + "'");
+  if (name_.empty()) {  // give the unnamed file a random name, then rename it
+    const std::string proc = "/proc/self/fd/" + std::to_string(fd_);
+    for (int attempt = 0; attempt < 100 && name_.empty(); ++attempt) {
+      std::string candidate = random_name(dir_);
+      const Creating creating;
+      if (!creating.ok) {
+        errno = EINTR;
+        return fail("cannot name the temporary file in '" + dir_ + "'");
+      }
+      slot_ = claim_slot(candidate);
       if (::linkat(AT_FDCWD, proc.c_str(), AT_FDCWD, candidate.c_str(), AT_SYMLINK_FOLLOW) == 0) {
-        t.name = candidate;
+        name_ = candidate;
       } else {
         const int e = errno;
-        release_slot(t.slot);
-        t.slot = -1;
+        release_slot(slot_);
+        slot_ = -1;
         if (e != EEXIST) {
           errno = e;
-          return fail("cannot name the temporary file in '" + dir + "'");
+          return fail("cannot name the temporary file in '" + dir_ + "'");
         }
       }
     }
-    if (t.name.empty()) return fail("cannot name the temporary file in '" + dir + "'");
+    if (name_.empty()) return fail("cannot name the temporary file in '" + dir_ + "'");
   }
-  if (std::rename(t.name.c_str(), path.c_str()) != 0) return fail("cannot rename the temporary file to '" + path + "'");
-  t.renamed = true;
-  int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (std::rename(name_.c_str(), path_.c_str()) != 0)
+    return fail("cannot rename the temporary file to '" + path_ + "'");
+  renamed_ = true;
+  int dfd = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {
     ::fsync(dfd);  // the rename itself on disk; best effort
     ::close(dfd);
   }
   return true;
+}
+
+bool write_file_atomically(const std::string& path, const FilePart* parts, size_t count, std::string& error) {
+  AtomicFile file;
+  if (!file.open(path, error)) return false;
+  if (!write_parts(file.fd(), parts, count)) {
+    error = "cannot write '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  return file.commit(error);
 }
 
 size_t remove_stale_temp_files(const std::string& dir) {

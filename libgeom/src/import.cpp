@@ -61,7 +61,10 @@ bool validate(Scene& s, const ImportOptions& options, std::string& error) {
       return false;
     }
   }
-  for (size_t t = 0; t < s.indices.size(); ++t) {
+  bool all_finite = true;  // then no triangle uses a non-finite vertex: one pass over the vertices, not the corners
+  for (size_t i = 0; i < s.positions.size(); i += 3)
+    all_finite &= std::isfinite(s.positions[i]) & std::isfinite(s.positions[i + 1]) & std::isfinite(s.positions[i + 2]);
+  for (size_t t = 0; !all_finite && t < s.indices.size(); ++t) {
     const float* p = &s.positions[3 * size_t(s.indices[t])];
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
       error = "triangle " + std::to_string(t / 3) + " uses vertex " + std::to_string(s.indices[t]) +
@@ -163,11 +166,12 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
     }
     return import_memory(path, bytes.data(), bytes.size(), options, "");
   }
-  if (!detail::read_whole_file(path, bytes, options.max_bytes, error)) {
+  detail::FileBytes file;  // its own mapping when large: no hole left in the heap
+  if (!detail::read_whole_file(path, file, options.max_bytes, error)) {
     result.error = path + ": " + error;
     return result;
   }
-  return import_memory(path, bytes.data(), bytes.size(), options, directory_of(path));
+  return import_memory(path, file.data(), file.size(), options, directory_of(path));
 }
 
 std::vector<std::string> input_dependencies(const std::string& input) {

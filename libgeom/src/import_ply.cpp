@@ -175,6 +175,131 @@ std::string number_or_end(const Body& body) {
   return p >= body.end ? "file ends early" : "bad value";
 }
 
+// One binary scalar at `p` as a double (`big`: big-endian).
+double load_scalar(PlyType t, const unsigned char* p, bool big) {
+  const size_t n = type_size(t);
+  uint64_t u = 0;
+  for (size_t i = 0; i < n; ++i) u |= uint64_t(p[big ? n - 1 - i : i]) << (8 * i);
+  switch (t) {
+    case PlyType::I8:
+      return double(int8_t(uint8_t(u)));
+    case PlyType::U8:
+      return double(uint8_t(u));
+    case PlyType::I16:
+      return double(int16_t(uint16_t(u)));
+    case PlyType::U16:
+      return double(uint16_t(u));
+    case PlyType::I32:
+      return double(int32_t(uint32_t(u)));
+    case PlyType::U32:
+      return double(uint32_t(u));
+    case PlyType::F32: {
+      const uint32_t w = uint32_t(u);
+      float f;
+      std::memcpy(&f, &w, 4);
+      return f;
+    }
+    case PlyType::F64: {
+      double d;
+      std::memcpy(&d, &u, 8);
+      return d;
+    }
+  }
+  return 0;
+}
+
+// The binary fast paths: a whole element read straight into the scene's
+// arrays, with the general reader's results. False (having read nothing the
+// caller keeps) on anything they do not take or anything wrong: the general
+// reader then reads the element and says what is wrong.
+
+// A vertex element of scalars only: its x, y, z (`role_of[i]`: 0 skip, 1..3 x..z).
+bool fast_vertices(const Element& el, const std::vector<uint8_t>& role_of, Body& body, std::vector<float>& positions) {
+  size_t record = 0, offset[3] = {0, 0, 0};
+  PlyType type[3] = {PlyType::F32, PlyType::F32, PlyType::F32};
+  for (size_t i = 0; i < el.props.size(); ++i) {
+    if (el.props[i].list) return false;
+    if (role_of[i]) offset[role_of[i] - 1] = record, type[role_of[i] - 1] = el.props[i].type;  // the last one wins
+    record += type_size(el.props[i].type);
+  }
+  if (record == 0 || el.count > body.left() / record) return false;
+  const bool big = body.format == Format::BigEndian;
+  const size_t at = positions.size(), n = size_t(el.count);
+  positions.resize(at + 3 * n);
+  float* out = positions.data() + at;
+  const unsigned char* p = body.p;
+  const bool plain = !big && type[0] == PlyType::F32 && type[1] == PlyType::F32 && type[2] == PlyType::F32;
+  if (plain && record == 12 && offset[0] == 0 && offset[1] == 4 && offset[2] == 8) {
+    std::memcpy(out, p, 12 * n);
+  } else {
+    for (size_t k = 0; k < n; ++k, p += record, out += 3)
+      for (int c = 0; c < 3; ++c) {
+        if (plain)
+          std::memcpy(out + c, p + offset[c], 4);
+        else
+          out[c] = to_float(load_scalar(type[c], p + offset[c], big));
+      }
+  }
+  body.p += record * n;
+  return true;
+}
+
+// A face element whose one property is the integer list of vertex indices:
+// polygons fanned from their first corner, fewer than 3 corners counted in `short_faces`.
+bool fast_faces(const Element& el, Body& body, size_t base, uint64_t vertex_count, Scene& out, uint64_t& short_faces) {
+  if (el.props.size() != 1) return false;
+  const Property& prop = el.props[0];
+  if (!prop.list || (prop.type != PlyType::I32 && prop.type != PlyType::U32)) return false;
+  const bool big = body.format == Format::BigEndian;
+  const size_t cs = type_size(prop.count_type);
+  const bool u8 = prop.count_type == PlyType::U8;
+  std::vector<uint32_t>& ix = out.indices;
+  const size_t first = ix.size();
+  size_t at = first;
+  ix.resize(first + 3 * size_t(std::min<uint64_t>(el.count, body.left() / (cs + 12))));
+  std::vector<uint32_t> poly;
+  const unsigned char* p = body.p;
+  const unsigned char* const end = body.end;
+  const uint32_t b = uint32_t(base);
+  auto index = [&](const unsigned char* q, uint32_t& v) {
+    uint32_t w;
+    if (big)
+      w = uint32_t(q[3]) | uint32_t(q[2]) << 8 | uint32_t(q[1]) << 16 | uint32_t(q[0]) << 24;
+    else
+      std::memcpy(&w, q, 4);
+    const int64_t i = prop.type == PlyType::I32 ? int64_t(int32_t(w)) : int64_t(w);
+    if (i < 0 || uint64_t(i) >= vertex_count) return false;
+    v = b + uint32_t(i);
+    return true;
+  };
+  for (uint64_t k = 0; k < el.count; ++k) {
+    if (size_t(end - p) < cs) return false;
+    const double nd = u8 ? double(*p) : load_scalar(prop.count_type, p, big);
+    p += cs;
+    if (nd < 0 || nd > double(size_t(end - p) / 4)) return false;
+    const size_t n = size_t(nd);
+    if (n == 3) {
+      if (at + 3 > ix.size()) ix.resize(std::max(2 * ix.size(), at + 3));
+      uint32_t* t = ix.data() + at;
+      if (!index(p, t[0]) || !index(p + 4, t[1]) || !index(p + 8, t[2])) return false;
+      p += 12, at += 3;
+      continue;
+    }
+    poly.resize(n);
+    for (size_t j = 0; j < n; ++j, p += 4)
+      if (!index(p, poly[j])) return false;
+    if (n < 3) {
+      ++short_faces;
+      continue;
+    }
+    if (at + 3 * (n - 2) > ix.size()) ix.resize(std::max(2 * ix.size(), at + 3 * (n - 2)));
+    for (size_t j = 1; j + 1 < n; ++j, at += 3) ix[at] = poly[0], ix[at + 1] = poly[j], ix[at + 2] = poly[j + 1];
+  }
+  ix.resize(at);
+  out.sources.resize(out.sources.size() + (at - first) / 3);  // TriangleSource{} each
+  body.p = p;
+  return true;
+}
 }  // namespace
 
 bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
@@ -343,6 +468,20 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
     }
     if (is_strips && (found & 8)) done_strips = true;
 
+    if (format != Format::Ascii && (is_vertex || (is_face && (found & 8)))) {
+      const size_t np = out.positions.size(), ni = out.indices.size(), ns = out.sources.size();
+      const unsigned char* start = body.p;
+      uint64_t shorts = 0;
+      std::vector<uint8_t> role_of(roles.size(), 0);
+      for (size_t i = 0; i < roles.size(); ++i) role_of[i] = roles[i] >= X && roles[i] <= Z ? uint8_t(roles[i]) : 0;
+      if (is_vertex ? fast_vertices(el, role_of, body, out.positions)
+                    : fast_faces(el, body, base, vertex_count, out, shorts)) {
+        short_faces += shorts;
+        continue;
+      }
+      out.positions.resize(np), out.indices.resize(ni), out.sources.resize(ns);  // the general reader says why
+      body.p = start;
+    }
     const char* what = is_vertex ? "vertex " : is_face ? "face " : is_strips ? "strip " : nullptr;
     for (uint64_t k = 0; k < el.count; ++k) {
       auto where = [&]() {

@@ -49,13 +49,17 @@ bool import_binary(const ImportInput& in, uint64_t n, Scene& out, std::string& e
     error = "more than 4294967295 vertices";
     return false;
   }
-  out.positions.reserve(out.positions.size() + 9 * n);
-  out.indices.reserve(out.indices.size() + 3 * n);
+  // Straight into the scene's arrays (sized once, no per-value push).
+  const size_t p0 = out.positions.size(), i0 = out.indices.size();
+  out.positions.resize(p0 + 9 * size_t(n));
+  out.indices.resize(i0 + 3 * size_t(n));
   out.sources.resize(out.sources.size() + n);
+  float* pos = out.positions.data() + p0;
+  uint32_t* idx = out.indices.data() + i0;
   const unsigned char* rec = in.data + 84;
-  for (uint64_t t = 0; t < n; ++t, rec += 50) {
-    for (int k = 0; k < 9; ++k) out.positions.push_back(load_le_f32(rec + 12 + 4 * k));
-    for (int k = 0; k < 3; ++k) out.indices.push_back(uint32_t(base + 3 * t + k));
+  for (uint64_t t = 0; t < n; ++t, rec += 50, pos += 9, idx += 3) {
+    for (int k = 0; k < 9; ++k) pos[k] = load_le_f32(rec + 12 + 4 * k);
+    for (int k = 0; k < 3; ++k) idx[k] = uint32_t(base + 3 * t + k);
   }
   return true;
 }

@@ -17,7 +17,7 @@ namespace geom {
 
 Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                       const std::vector<Light>& lights, const PipelineOptions& options,
-                      const std::function<void(const char* stage)>& after_stage) {
+                      const std::function<void(const char* stage, Pipeline& run)>& after_stage) {
   using clock = std::chrono::steady_clock;
   Pipeline p;
   auto mark = clock::now();
@@ -27,7 +27,7 @@ Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t tr
       p.stages.push_back({stage, std::chrono::duration<double>(now - mark).count(), peak_rss_bytes()});
       mark = now;
     }
-    if (after_stage) after_stage(stage);
+    if (after_stage) after_stage(stage, p);
   };
   const size_t tc = triangle_count;
   p.weld = weld(positions, indices, 3 * tc, options.weld_tolerance);

@@ -8,28 +8,15 @@
 
 namespace geombake {
 
-Written write_if_changed(const std::string& path, const std::vector<geom::BakedSection>& sections, bool force,
-                         bool make_parents, std::string& error, std::vector<uint32_t>* crcs) {
+bool make_parent_directories(const std::string& path, std::string& error) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (make_parents) {
-    const fs::path parent = fs::path(path).parent_path();
-    if (!parent.empty() && !fs::is_directory(parent, ec)) {
-      fs::create_directories(parent, ec);
-      if (!fs::is_directory(parent)) {
-        error = "cannot create the directory " + parent.string() + (ec ? ": " + ec.message() : "");
-        return Written::Failed;
-      }
-    }
-  }
-  // No output there yet (or --force): the writer's own path.
-  // A symlink there is replaced, never compared through (issue 15).
-  if (force || !fs::is_regular_file(fs::symlink_status(path, ec)))
-    return geom::write_baked(path, sections, error, crcs) ? Written::New : Written::Failed;
-  // An output there: compared with what would be written, piece by piece.
-  bool unchanged = false;
-  if (!geom::write_baked_if_changed(path, sections, unchanged, error, crcs)) return Written::Failed;
-  return unchanged ? Written::Unchanged : Written::New;
+  const fs::path parent = fs::path(path).parent_path();
+  if (parent.empty() || fs::is_directory(parent, ec)) return true;
+  fs::create_directories(parent, ec);
+  if (fs::is_directory(parent)) return true;
+  error = "cannot create the directory " + parent.string() + (ec ? ": " + ec.message() : "");
+  return false;
 }
 
 int terminal_width(int fd) {

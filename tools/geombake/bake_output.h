@@ -10,15 +10,12 @@ namespace geombake {
 
 enum class Written { New, Unchanged, Failed };
 
-// Serializes `sections` and writes them atomically to `path`, unless the file
-// there already holds exactly those bytes and `force` is false: then it is left
-// untouched (its mtime kept, so downstream build steps need not rerun).
-// `make_parents`: create the missing directories above `path` first (an output
-// mirrored under -o DIR). Failed: `error` says why ("what is wrong").
-// `crcs`, when given, receives each section's CRC-32C as the writer computed
-// it (New or Unchanged), for the report: never computed a second time.
-Written write_if_changed(const std::string& path, const std::vector<geom::BakedSection>& sections, bool force,
-                         bool make_parents, std::string& error, std::vector<uint32_t>* crcs = nullptr);
+// The missing directories above `path` (an output mirrored under -o DIR),
+// created before its bake streams into it (geom/bake.h); the output itself is
+// written by geom::BakedFileWriter, left untouched (mtime kept, so downstream
+// build steps need not rerun) when it already holds those bytes, unless
+// --force. False: `error` says why ("what is wrong").
+bool make_parent_directories(const std::string& path, std::string& error);
 
 // The width of the terminal on `fd` (TIOCGWINSZ), else $COLUMNS, else 80.
 int terminal_width(int fd);

@@ -169,9 +169,10 @@ struct SectionInfo {
   uint32_t crc;
 };
 
-// `crc`: the section's CRC-32C as the writer computed it (never a second time).
+// `crc`: the section's CRC-32C as the writer computed it (never a second time);
+// the section's bytes are gone (written as made), its count x stride is its size.
 SectionInfo info_of(const geom::BakedSection& s, uint32_t crc) {
-  return {s.name, s.type, s.format, s.stride, s.item, s.count, s.size(), crc};
+  return {s.name, s.type, s.format, s.stride, s.item, s.count, s.count * s.stride, crc};
 }
 
 nlohmann::ordered_json section_json(const SectionInfo& s) {
@@ -254,22 +255,35 @@ Outcome bake_unguarded(Job& job, const geom::BakeOptions& options, const geom::I
   // the importer's warnings are stored with it too, and shown with the path.
   o.warnings = imported.scene.warnings;
   for (std::string& w : imported.scene.warnings) replace_all(w, job.input, job.name);
-  o.result = geom::bake_scene(std::move(imported.scene), job.name, options);  // its triangles freed once welded
+  std::string error;
+  if (write.make_parents && !make_parent_directories(job.output, error)) {
+    o.error = job.input + ": cannot write " + job.output + ": " + error;
+    return o;
+  }
+  // Each section goes to the output (a temporary file until finished) as soon
+  // as it is made, its buffer freed: the bake's peak holds no finished section.
+  geom::BakedFileWriter writer;
+  writer.open(job.output, !write.force);  // an output there: compared as it comes, left untouched if the same
+  o.result = geom::bake_scene(std::move(imported.scene), job.name, options, writer);  // its triangles freed once welded
   imported = geom::ImportResult();
   if (!o.result.ok) {
     o.error = o.result.error;
-    if (o.error.rfind(job.name + ":", 0) == 0) o.error = job.input + o.error.substr(job.name.size());
+    if (!writer.error().empty())
+      o.error = job.input + ": cannot write " + job.output + ": " + writer.error();
+    else if (o.error.rfind(job.name + ":", 0) == 0)
+      o.error = job.input + o.error.substr(job.name.size());
     return o;
   }
   int expected = kRunning;
   if (timeout > 0 && double(now_ns() - job.started_ns.load()) * 1e-9 > timeout) return o;  // the caller times it out
   if (!job.state.compare_exchange_strong(expected, kWriting)) return o;                    // given up on: write nothing
-  std::string error;
   std::vector<uint32_t> crcs;
-  o.written = write_if_changed(job.output, o.result.sections, write.force, write.make_parents, error, &crcs);
-  if (o.written == Written::Failed) {
+  bool unchanged = false;
+  if (writer.finish(unchanged, &crcs)) {
+    o.written = unchanged ? Written::Unchanged : Written::New;
+  } else {
     o.result.ok = false;
-    o.error = job.input + ": cannot write " + job.output + ": " + error;
+    o.error = job.input + ": cannot write " + job.output + ": " + writer.error();
   }
   crcs.resize(o.result.sections.size(), 0);
   for (size_t i = 0; i < o.result.sections.size(); ++i) o.sections.push_back(info_of(o.result.sections[i], crcs[i]));

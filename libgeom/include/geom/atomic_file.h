@@ -41,6 +41,27 @@ inline bool write_file_atomically(const std::string& path, const std::string& te
   return write_file_atomically(path, text.data(), text.size(), error);
 }
 
+// The same in steps, for a file written piece by piece at any offsets (pwrite
+// to fd()): open() makes the locked temporary file in the target's folder (the
+// target checked as above), commit() flushes it and renames it over the target.
+// Destroyed uncommitted (an error, an exception), the temporary file goes.
+class AtomicFile {
+ public:
+  AtomicFile() = default;
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  bool open(const std::string& path, std::string& error);
+  int fd() const { return fd_; }
+  bool commit(std::string& error);
+
+ private:
+  std::string path_, dir_, name_;  // name_: the temporary file's, "" while unnamed
+  int fd_ = -1, slot_ = -1;
+  bool renamed_ = false;
+};
+
 // Removes the temporary files a killed writer left in `dir`: entries named
 // kTempPrefix..., regular files (not symlinks) owned by this user, whose lock no
 // process holds. Anything else is left alone. Returns how many were removed.

@@ -81,13 +81,14 @@ struct BakeResult {
 };
 
 // Memory kept across the bakes of a batch: asks the C library's allocator (glibc)
-// to serve every allocation from its heap and never hand freed memory back, so
-// each bake reuses the pages earlier stages and inputs touched instead of
-// faulting in fresh zeroed ones (a bake touches about 400 bytes per triangle;
-// fresh pages were a quarter of its time). Process-wide and for the process's
-// life: for tools that bake, not for a library's host to have imposed on it;
-// the resident size stays at the largest peak. No effect elsewhere (another C
-// library, a sanitizer's allocator). Returns whether it took effect.
+// to serve every allocation of every thread from its one main heap and never
+// hand freed memory back, so each bake reuses the pages earlier stages and
+// inputs touched instead of faulting in fresh zeroed ones (a bake touches about
+// 300 bytes per triangle; fresh pages were a quarter of its time).
+// Process-wide and for the process's life: for tools that bake, not for a
+// library's host to have imposed on it; the resident size stays at the largest
+// peak. No effect elsewhere (another C library, a sanitizer's allocator).
+// Returns whether it took effect.
 bool keep_memory_across_bakes();
 
 // Bakes an imported scene; `name` is the input's name as the report shows it.
@@ -96,6 +97,16 @@ BakeResult bake_scene(const Scene& scene, const std::string& name, const BakeOpt
 // triangles (positions, indices, sources) are freed as soon as the weld has
 // read them. `scene` keeps its lights, warnings and counts.
 BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options = {});
+
+// The same bake with the lowest peak: each section is written to `out`
+// (opened, not yet expected or finished: the caller finishes it) as soon as
+// the stage that makes it has run, and its buffer freed, so the weld's
+// remap, the ESM quads, the volume and the adjacency never all coexist. The
+// file is byte for byte write_baked's of bake_scene's sections;
+// result.sections describe them (size() is 0: their bytes are gone). A
+// failed write is result.error ("NAME: cannot write the output: ..."), and
+// out.error() says it.
+BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options, BakedFileWriter& out);
 
 // Imports `input`, bakes it and writes the container to `output` atomically:
 // on any failure no output file is created (an existing one is left as it was).

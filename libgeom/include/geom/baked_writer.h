@@ -94,4 +94,45 @@ bool write_baked(const std::string& path, const std::vector<BakedSection>& secti
 bool write_baked_if_changed(const std::string& path, const std::vector<BakedSection>& sections, bool& unchanged,
                             std::string& error, std::vector<uint32_t>* crcs = nullptr);
 
+// The layout of write_baked written section by section, each as soon as it is
+// final, so that its buffer can be freed at once (geom/bake.h streams a bake
+// so): the sections go to a temporary file (geom/atomic_file.h, created at the
+// first byte to write) at their final offsets, the header and table with every
+// CRC-32C last, then the file is renamed over `path`. With `keep_if_same` and
+// a regular file at `path` (a symlink is replaced, never compared through),
+// each section is compared with that file as it comes and nothing is written
+// while they match; at the first difference the matching part is copied from
+// it; if the whole file matches it is left untouched (its mtime kept). The
+// same bytes as write_baked of the same sections. Destroyed before finish()
+// (an error, a time-out), it leaves nothing behind. Not thread-safe.
+class BakedFileWriter {
+ public:
+  BakedFileWriter();
+  ~BakedFileWriter();
+  BakedFileWriter(const BakedFileWriter&) = delete;
+  BakedFileWriter& operator=(const BakedFileWriter&) = delete;
+
+  void open(const std::string& path, bool keep_if_same);
+  // The number of sections the file will hold: once, before the first.
+  bool expect(size_t section_count);
+  // The next section in file order, whole (its bytes are written or compared
+  // now: the caller may free them on return) ...
+  bool put(const BakedSection& section);
+  // ... or in pieces: begin() with `size` bytes to come (the section's own
+  // bytes are not read), then write() them in order, then end().
+  bool begin(const BakedSection& section, uint64_t size);
+  bool write(const void* data, size_t size);
+  bool end();
+  // Writes the header and table and renames the file over the target (or
+  // leaves an identical target as it was: `unchanged`). `crcs`: every
+  // section's CRC-32C, in order.
+  bool finish(bool& unchanged, std::vector<uint32_t>* crcs = nullptr);
+  // After a false from any call: what is wrong (every later call is false).
+  const std::string& error() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
 }  // namespace geom

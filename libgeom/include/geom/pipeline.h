@@ -81,11 +81,14 @@ struct Pipeline {
 // Runs the pipeline over `triangle_count` triangles (`indices`: 3 each, into
 // `positions`), with an exact volume for each of `lights`. Deterministic: the
 // same input and options give the same buffers on any run. `after_stage`, if
-// given, is called after each stage that ran with its name (as StageTiming's),
-// e.g. to free the input once "weld" has read it. May throw std::bad_alloc.
+// given, is called after each stage that ran with its name (as StageTiming's)
+// and the run so far, e.g. to free the input once "weld" has read it, or to
+// write a buffer no later stage changes and free it (geom/bake.h streams the
+// sections so): a buffer the callback empties must be one no later stage
+// reads (the generic volume is read by "lights"). May throw std::bad_alloc.
 Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                       const std::vector<Light>& lights = {}, const PipelineOptions& options = {},
-                      const std::function<void(const char* stage)>& after_stage = {});
+                      const std::function<void(const char* stage, Pipeline& run)>& after_stage = {});
 
 // The report of what each rule saved, one line per rule, for people.
 std::string silhouette_report(const Pipeline& run);
