@@ -45,11 +45,33 @@ void write_own(uint32_t* out, const uint32_t* indices, size_t triangle_count) {
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, const Topology& topology) {
   write_own(out, indices, triangle_count);
   const uint32_t kNone = Topology::kNone;
+  // An edge of two faces: each face's neighbour is the other, either way
+  // round; its slot of the edge is the twin, the vertex off it the next but one.
+  const bool twins = topology.face_twins.size() == 3 * triangle_count;
+  if (twins)
+    for (size_t s = 0; s < 3 * triangle_count; ++s) {
+      const uint32_t tw = topology.face_twins[s];
+      if (tw == kNone) continue;
+      const uint32_t k = tw % 3;
+      out[2 * s + 1] = indices[tw - k + (k == 0 ? 2 : k - 1)];
+    }
   for (uint32_t id = 0; id < topology.edges.size(); ++id) {
     const Edge& e = topology.edges[id];
     if (e.face_count < 2) continue;
     detail::count_work(2 * uint64_t(e.face_count));
+    if (twins && e.face_count == 2) continue;
     const uint32_t* faces = topology.edge_faces.data() + e.first;
+    // Where the edge slot of triangle t is.
+    const auto slot_of = [&](uint32_t t) {
+      const uint32_t* fe = topology.face_edges.data() + 3 * size_t(t);
+      return 6 * size_t(t) + 2 * (fe[0] == id ? 0 : fe[1] == id ? 1 : 2) + 1;
+    };
+    if (e.face_count == 2) {  // the usual edge: each face's neighbour is the other, either way round
+      const uint32_t t0 = faces[0] >> 1, t1 = faces[1] >> 1;
+      out[slot_of(t0)] = third_of(indices + 3 * size_t(t1), e.v0, e.v1);
+      out[slot_of(t1)] = third_of(indices + 3 * size_t(t0), e.v0, e.v1);
+      continue;
+    }
     uint32_t first[2][2] = {{kNone, kNone}, {kNone, kNone}};  // [direction][0: first, 1: second]
     for (uint32_t i = 0; i < e.face_count; ++i) {
       uint32_t* slot = first[faces[i] & 1];
@@ -64,9 +86,7 @@ bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_cou
       uint32_t n = first[d ^ 1][0];
       if (n == kNone) n = first[d][0] != t ? first[d][0] : first[d][1];
       if (n == kNone) continue;
-      const uint32_t* fe = topology.face_edges.data() + 3 * size_t(t);
-      const int k = fe[0] == id ? 0 : fe[1] == id ? 1 : 2;
-      out[6 * size_t(t) + 2 * k + 1] = third_of(indices + 3 * size_t(n), e.v0, e.v1);
+      out[slot_of(t)] = third_of(indices + 3 * size_t(n), e.v0, e.v1);
     }
   }
   return true;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "live_faces.h"
 #include "vec3.h"
 
 namespace geom {
@@ -18,27 +19,30 @@ inline Vec3 unit(Vec3 a) { return normalize_or(a, Vec3{0, 0, 1}); }
 // std::lround(clamp(v) * 32767), inline (lround is a library call, 5% of a
 // small mesh's bake): the truncation toward zero is exact at these sizes, so
 // is the remainder, and halves go away from zero as lround's do.
+// Branch-free where the data decide (the signs and the rounding of each
+// normal are as good as random: a branch on them mispredicts every other call).
 inline int16_t snorm16(double v) {
   const double x = std::max(-1.0, std::min(1.0, v)) * 32767.0;
   const int t = int(x);
   const double r = x - double(t);
-  return int16_t(t + (r >= 0.5 ? 1 : r <= -0.5 ? -1 : 0));
+  return int16_t(t + int(r >= 0.5) - int(r <= -0.5));
+}
+
+inline void encode(const double v[3], int16_t out[2]) {
+  const double s = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
+  double x = s > 0 ? v[0] / s : 0, y = s > 0 ? v[1] / s : 0;
+  const double z = s > 0 ? v[2] / s : 1;
+  const double fx = (1 - std::fabs(y)) * (x >= 0 ? 1 : -1), fy = (1 - std::fabs(x)) * (y >= 0 ? 1 : -1);
+  const bool fold = z < 0;
+  x = fold ? fx : x;
+  y = fold ? fy : y;
+  out[0] = snorm16(x);
+  out[1] = snorm16(y);
 }
 
 }  // namespace
 
-void octahedral_encode(const double v[3], int16_t out[2]) {
-  const double s = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
-  double x = s > 0 ? v[0] / s : 0, y = s > 0 ? v[1] / s : 0;
-  const double z = s > 0 ? v[2] / s : 1;
-  if (z < 0) {
-    const double ox = x, oy = y;
-    x = (1 - std::fabs(oy)) * (ox >= 0 ? 1 : -1);
-    y = (1 - std::fabs(ox)) * (oy >= 0 ? 1 : -1);
-  }
-  out[0] = snorm16(x);
-  out[1] = snorm16(y);
-}
+void octahedral_encode(const double v[3], int16_t out[2]) { encode(v, out); }
 
 void octahedral_decode(const int16_t in[2], float v[3]) {
   // As shaders/esm_quad.vert: snorm16 attribute, then the octahedral unfold.
@@ -62,11 +66,17 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   for (int a = 0; a < 3; ++a) r.origin[a] = fp.origin[a];
   st.edges = topology.edges.size();
   std::vector<uint32_t> remap(fp.plane_count(), FacePlanes::kNone);
+  // Room is reserved below: four plain stores (a range insert is a
+  // general-purpose call per plane).
+  auto push_plane = [&](float a, float b, float c, float d) {
+    r.planes.push_back(a), r.planes.push_back(b), r.planes.push_back(c), r.planes.push_back(d);
+  };
   auto plane_of = [&](uint32_t face) {
     const uint32_t p = fp.face_plane[face];
     if (remap[p] == FacePlanes::kNone) {
       remap[p] = uint32_t(r.planes.size() / 4);
-      r.planes.insert(r.planes.end(), fp.planes.begin() + 4 * size_t(p), fp.planes.begin() + 4 * size_t(p) + 4);
+      const float* q = fp.planes.data() + 4 * size_t(p);
+      push_plane(q[0], q[1], q[2], q[3]);
     }
     return remap[p];
   };
@@ -76,14 +86,13 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   };
   auto normal = [&](uint32_t f) { return Vec3{fp.normals[3 * f], fp.normals[3 * f + 1], fp.normals[3 * f + 2]}; };
   auto emit = [&](Vec3 p0, Vec3 p1, uint32_t pa, uint32_t pb, Vec3 q) {
-    EsmQuad e;
+    EsmQuad& e = r.quads.emplace_back();  // in place (one built aside and copied in stalls on its bytes)
     e.p0[0] = float(p0.x), e.p0[1] = float(p0.y), e.p0[2] = float(p0.z);
     e.p1[0] = float(p1.x), e.p1[1] = float(p1.y), e.p1[2] = float(p1.z);
     e.plane_a = pa;
     e.plane_b = pb;
     const double qd[3] = {q.x, q.y, q.z};
-    octahedral_encode(qd, e.q);
-    r.quads.push_back(e);
+    encode(qd, e.q);
   };
   const double bevel_dot = -std::cos(options.bevel_below_degrees * M_PI / 180.0);
 
@@ -91,21 +100,22 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   // otherwise two quads and a plane per face), so the buffers never grow
   // (a grown vector copies itself; the unused tail is never paged in).
   {
-    size_t quads = 0, planes = 4 * fp.plane_count();
-    for (const Edge& e : topology.edges) {
-      quads += e.face_count == 2 ? 2 : 2 * size_t(e.face_count);
-      planes += 4 * (e.face_count == 2 ? 1 : size_t(e.face_count));
+    // Sums over the edges, from the table's totals: every face entry, less
+    // one per edge of two faces (a manifold or inconsistent edge).
+    const TopologyStats& ts = topology.stats;
+    size_t pairs = size_t(ts.manifold_edges + ts.inconsistent_edges);
+    if (ts.edges != topology.edges.size()) {  // stats not filled in: count
+      pairs = 0;
+      for (const Edge& e : topology.edges) pairs += e.face_count == 2;
     }
+    const size_t entries = topology.edge_faces.size();
+    const size_t quads = 2 * (entries - pairs), planes = 4 * fp.plane_count() + 4 * (entries - pairs);
     r.quads.reserve(quads);
     r.planes.reserve(planes);
   }
-  std::vector<uint32_t> live;
+  detail::LiveFaces live;
   for (const Edge& e : topology.edges) {
-    live.clear();
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      const uint32_t ef = topology.edge_faces[e.first + i];
-      if (fp.face_plane[ef >> 1] != FacePlanes::kNone) live.push_back(ef);
-    }
+    live.gather(topology, fp, e);
     if (live.empty()) continue;
     ++st.candidate_edges;
     const Vec3 v0 = pos(e.v0), v1 = pos(e.v1);
@@ -138,7 +148,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         const Vec3 nbev = length(s) > 1e-6 ? unit(s) : unit(cross(p1 - p0, na));
         const Vec3 mid = (p0 + p1) * 0.5;
         const uint32_t pbev = uint32_t(r.planes.size() / 4);
-        r.planes.insert(r.planes.end(), {float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid))});
+        push_plane(float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid)));
         emit(p0, p1, pa, pbev, unit(na + nbev));
         emit(p0, p1, pbev, pb, unit(nbev + nb));
         ++st.bevel_edges;
@@ -154,7 +164,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         const Vec3 n = normal(f), u = unit(cross(p1 - p0, n));
         const uint32_t pa = plane_of(f), pbev = uint32_t(r.planes.size() / 4);
         const Vec3 mid = (p0 + p1) * 0.5;
-        r.planes.insert(r.planes.end(), {float(u.x), float(u.y), float(u.z), float(-dot(u, mid))});
+        push_plane(float(u.x), float(u.y), float(u.z), float(-dot(u, mid)));
         emit(p0, p1, pa, pbev, unit(n + u));
         emit(p0, p1, pbev, pa | EsmQuad::kFlip, unit(u - n));
         ++st.bevel_edges;

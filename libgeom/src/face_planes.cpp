@@ -15,15 +15,18 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
   r.normals.assign(triangle_count * 3, 0.0);
 
   // Local frame: the centre of the bounding box of every referenced vertex.
-  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  // In float (widening is exact and keeps the order, so the bounds are the
+  // same), widened once.
+  float lof[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hif[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
   for (size_t i = 0; i < 3 * triangle_count; ++i) {
     const Float3& p = positions[indices[i]];
-    const double c[3] = {p.x, p.y, p.z};
+    const float c[3] = {p.x, p.y, p.z};
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], c[a]);
-      hi[a] = std::max(hi[a], c[a]);
+      lof[a] = std::min(lof[a], c[a]);
+      hif[a] = std::max(hif[a], c[a]);
     }
   }
+  const double lo[3] = {lof[0], lof[1], lof[2]}, hi[3] = {hif[0], hif[1], hif[2]};
   if (triangle_count == 0) return r;
   double diag2 = 0;
   for (int a = 0; a < 3; ++a) {
@@ -62,6 +65,7 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
   const double cos_tol = std::cos(options.coplanar_degrees * M_PI / 180.0);
   const double dist_tol = options.coplanar_distance * r.diagonal;
   const bool have_edges = topology.face_edges.size() == 3 * triangle_count;
+  const bool have_twins = topology.face_twins.size() == 3 * triangle_count;
   std::vector<uint32_t> queue;
   r.planes.reserve(4 * (triangle_count - r.degenerate_faces));  // at most a plane per face: never grown
   for (size_t seed = 0; seed < triangle_count; ++seed) {
@@ -71,18 +75,27 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
     local(indices[3 * seed], p0);
     const double d = -(n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2]);
     const uint32_t id = uint32_t(r.plane_count());
-    r.planes.insert(r.planes.end(), {float(n[0]), float(n[1]), float(n[2]), float(d)});
+    r.planes.push_back(float(n[0])), r.planes.push_back(float(n[1]));  // reserved: plain stores
+    r.planes.push_back(float(n[2])), r.planes.push_back(float(d));
     r.face_plane[seed] = id;
     if (!have_edges) continue;
     queue.assign(1, uint32_t(seed));
     for (size_t qi = 0; qi < queue.size(); ++qi) {
       const uint32_t g = queue[qi];
       for (int k = 0; k < 3; ++k) {
-        const uint32_t e = topology.face_edges[3 * size_t(g) + k];
-        if (e == Topology::kNone || topology.edges[e].kind != EdgeKind::Manifold) continue;
-        const Edge& edge = topology.edges[e];
-        uint32_t h = topology.edge_faces[edge.first] >> 1;
-        if (h == g) h = topology.edge_faces[edge.first + 1] >> 1;
+        uint32_t h;
+        if (have_twins) {  // the other face of a two-faced edge, run the other way (a manifold edge)
+          const size_t s = 3 * size_t(g) + k;
+          const uint32_t tw = topology.face_twins[s];
+          if (tw == Topology::kNone || indices[tw] == indices[s]) continue;
+          h = tw / 3;
+        } else {
+          const uint32_t e = topology.face_edges[3 * size_t(g) + k];
+          if (e == Topology::kNone || topology.edges[e].kind != EdgeKind::Manifold) continue;
+          const Edge& edge = topology.edges[e];
+          h = topology.edge_faces[edge.first] >> 1;
+          if (h == g) h = topology.edge_faces[edge.first + 1] >> 1;
+        }
         if (r.face_plane[h] != FacePlanes::kNone) continue;
         const double* m = &r.normals[3 * size_t(h)];
         if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < cos_tol) continue;  // also rejects degenerate (0)

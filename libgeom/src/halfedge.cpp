@@ -89,6 +89,35 @@ bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_c
     const uint32_t a = t.edge_faces[edge.first] >> 1, b = t.edge_faces[edge.first + 1] >> 1;
     return a == f ? b : a;
   };
+  if (t.face_twins.size() == 3 * triangle_count && t.stats.inconsistent_edges == 0) {
+    // The same walk on the twins: from corner k of a face, out through slot
+    // k (the edge leaving the corner's vertex) to the twin slot j, which
+    // enters it: the vertex is the other face's corner j + 1, and the walk
+    // goes on out through that corner's slot; the other way, in through slot
+    // k + 2 to a twin j that leaves the vertex: corner j, on through j + 2.
+    for (size_t f0 = 0; f0 < triangle_count; ++f0) {
+      if (t.face_flags[f0] & kFaceCollapsed) continue;
+      for (int k0 = 0; k0 < 3; ++k0) {
+        if (seen[f0] >> k0 & 1) continue;
+        if (fans[indices[3 * f0 + k0]]++) return false;
+        seen[f0] |= uint8_t(1 << k0);
+        for (int way = 0; way < 2; ++way) {
+          uint32_t s = uint32_t(3 * f0) + uint32_t(way ? (k0 + 2) % 3 : k0);
+          for (;;) {
+            const uint32_t tw = t.face_twins[s];
+            if (tw == Topology::kNone) break;
+            const uint32_t g = tw / 3, j = tw - 3 * g;
+            const uint32_t k = way ? j : (j == 2 ? 0 : j + 1);
+            if (seen[g] >> k & 1) break;  // back at the start: a closed fan
+            seen[g] |= uint8_t(1 << k);
+            ++steps;
+            s = 3 * g + (way ? (k == 0 ? 2 : k - 1) : k);
+          }
+        }
+      }
+    }
+    return true;
+  }
   for (size_t f0 = 0; f0 < triangle_count; ++f0) {
     if (t.face_flags[f0] & kFaceCollapsed) continue;
     for (int k0 = 0; k0 < 3; ++k0) {

@@ -52,6 +52,7 @@ Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t tr
   }
   if (options.release_early) {  // no later stage reads them
     std::vector<uint32_t>().swap(p.topology.face_edges);
+    std::vector<uint32_t>().swap(p.topology.face_twins);
     std::vector<uint32_t>().swap(p.topology.face_component);
     std::vector<uint8_t>().swap(p.topology.face_flags);
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "live_faces.h"
 #include "vec3.h"
 
 namespace geom {
@@ -40,15 +41,9 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
   // when each of its edges has exactly two such faces in opposite directions.
   std::vector<uint32_t> parent(triangle_count);
   for (size_t f = 0; f < triangle_count; ++f) parent[f] = uint32_t(f);
-  std::vector<uint32_t> live;  // the non-degenerate faces of one edge, as edge_faces entries
+  detail::LiveFaces live;  // the non-degenerate faces of one edge, as edge_faces entries
   std::vector<uint8_t> open_root(triangle_count, 0);
-  auto gather = [&](const Edge& e) {
-    live.clear();
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      const uint32_t ef = topology.edge_faces[e.first + i];
-      if (has_plane(ef >> 1)) live.push_back(ef);
-    }
-  };
+  auto gather = [&](const Edge& e) { live.gather(topology, fp, e); };
   auto is_pair = [&]() { return live.size() == 2 && ((live[0] ^ live[1]) & 1u); };
   std::vector<uint32_t> open_faces;  // a face of each edge that is not a pair: its component is open
   for (const Edge& e : topology.edges) {
@@ -60,37 +55,44 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     if (!live.empty() && !is_pair()) open_faces.push_back(live[0] >> 1);
   }
   for (uint32_t f : open_faces) open_root[find_root(parent, f)] = 1;
-  // Dense component ids, in face order.
+  // Dense component ids, in face order; which faces are double-sided.
   std::vector<uint32_t> component(triangle_count, FacePlanes::kNone), dense(triangle_count, FacePlanes::kNone);
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (!has_plane(uint32_t(f))) continue;
-    const uint32_t root = find_root(parent, uint32_t(f));
-    if (dense[root] == FacePlanes::kNone) {
-      dense[root] = uint32_t(sv.component_closed.size());
-      sv.component_closed.push_back(!open_root[root]);
-    }
-    component[f] = dense[root];
-  }
-  st.components = sv.component_closed.size();
-  for (uint8_t c : sv.component_closed) st.closed_components += c;
   std::vector<uint8_t> double_sided(triangle_count, 0);
   for (size_t f = 0; f < triangle_count; ++f) {
     if (!has_plane(uint32_t(f))) {
       ++st.degenerate_faces;
       continue;
     }
-    double_sided[f] = !options.one_sided_closed || open_root[find_root(parent, uint32_t(f))];
+    const uint32_t root = find_root(parent, uint32_t(f));
+    if (dense[root] == FacePlanes::kNone) {
+      dense[root] = uint32_t(sv.component_closed.size());
+      sv.component_closed.push_back(!open_root[root]);
+    }
+    component[f] = dense[root];
+    double_sided[f] = !options.one_sided_closed || open_root[root];
     ++(double_sided[f] ? st.double_sided_faces : st.one_sided_faces);
   }
+  st.components = sv.component_closed.size();
+  for (uint8_t c : sv.component_closed) st.closed_components += c;
 
   // Side records, in edge order; room for the most (a pair: two records, else
   // one per face), so the buffers never grow.
   {
-    size_t most = 0;
-    for (const Edge& e : topology.edges) most += e.face_count == 2 ? 2 : e.face_count;
+    const size_t most = topology.edge_faces.size();  // the sum of those over the edges
     sv.sides.reserve(most);
     sv.side_component.reserve(most);
   }
+  // Each record written in place, field by field (one built aside and copied
+  // in stalls on its partly written bytes).
+  const auto add_side = [&](const Float3& p0, const Float3& p1, uint32_t plane_a, uint32_t plane_b,
+                            uint32_t component_id) {
+    SvSide& s = sv.sides.emplace_back();
+    put(s.p0, p0, sv.origin);
+    put(s.p1, p1, sv.origin);
+    s.plane_a = plane_a;
+    s.plane_b = plane_b;
+    sv.side_component.push_back(component_id);
+  };
   for (const Edge& e : topology.edges) {
     gather(e);
     if (live.empty()) continue;
@@ -103,31 +105,19 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
         st.skipped_coplanar_records += double_sided[fa] ? 2 : 1;
         continue;
       }
-      SvSide s;
-      put(s.p0, positions[e.v0], sv.origin);
-      put(s.p1, positions[e.v1], sv.origin);
-      s.plane_a = fp.face_plane[fa];
-      s.plane_b = fp.face_plane[fb];
       ++st.pair_edges;
-      sv.sides.push_back(s);
-      sv.side_component.push_back(component[fa]);
-      if (double_sided[fa]) {  // multiplicity up to 2: the second copy
-        s.plane_a |= SvSide::kSecond;
-        sv.sides.push_back(s);
-        sv.side_component.push_back(component[fa]);
-      }
+      add_side(positions[e.v0], positions[e.v1], fp.face_plane[fa], fp.face_plane[fb], component[fa]);
+      if (double_sided[fa])  // multiplicity up to 2: the second copy
+        add_side(positions[e.v0], positions[e.v1], fp.face_plane[fa] | SvSide::kSecond, fp.face_plane[fb],
+                 component[fa]);
       continue;
     }
     for (uint32_t ef : live) {
-      SvSide s;
       const bool reversed = ef & 1u;
-      put(s.p0, positions[reversed ? e.v1 : e.v0], sv.origin);
-      put(s.p1, positions[reversed ? e.v0 : e.v1], sv.origin);
-      s.plane_a = fp.face_plane[ef >> 1];
-      s.plane_b = s.plane_a | SvSide::kFlip;
+      const uint32_t plane = fp.face_plane[ef >> 1];
       ++st.single_records;
-      sv.sides.push_back(s);
-      sv.side_component.push_back(component[ef >> 1]);
+      add_side(positions[reversed ? e.v1 : e.v0], positions[reversed ? e.v0 : e.v1], plane, plane | SvSide::kFlip,
+               component[ef >> 1]);
     }
   }
 
@@ -136,12 +126,11 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
   sv.cap_component.reserve(triangle_count - st.degenerate_faces);
   for (size_t f = 0; f < triangle_count; ++f) {
     if (!has_plane(uint32_t(f))) continue;
-    SvCap c;
+    SvCap& c = sv.caps.emplace_back();
     put(c.a, positions[indices[3 * f]], sv.origin);
     put(c.b, positions[indices[3 * f + 1]], sv.origin);
     put(c.c, positions[indices[3 * f + 2]], sv.origin);
     c.plane = fp.face_plane[f] | (double_sided[f] ? SvCap::kDoubleSided : 0u);
-    sv.caps.push_back(c);
     sv.cap_component.push_back(component[f]);
   }
   st.sides = sv.sides.size();

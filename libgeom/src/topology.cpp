@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "vec3.h"
@@ -46,6 +47,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   s.triangles = triangle_count;
   t.face_flags.assign(triangle_count, 0);
   t.face_edges.assign(triangle_count * 3, Topology::kNone);
+  t.face_twins.assign(triangle_count * 3, Topology::kNone);
   t.face_component.assign(triangle_count, Topology::kNone);
 
   // Collapsed faces, and the half-edge count per smaller vertex.
@@ -60,7 +62,9 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     for (int k = 0; k < 3; ++k) ++start[std::min(v[k], v[(k + 1) % 3]) + 1];
   }
   for (size_t i = 0; i < vn; ++i) start[i + 1] += start[i];
-  std::vector<HalfEdge> half(start[vn]);
+  // Every entry is written below: storage without the zero fill.
+  const size_t half_count = start[vn];
+  std::unique_ptr<HalfEdge[]> half(new HalfEdge[half_count]);
   {
     std::vector<uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t f = 0; f < triangle_count; ++f) {
@@ -69,7 +73,8 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       for (int k = 0; k < 3; ++k) {
         uint32_t a = v[k], b = v[(k + 1) % 3];
         uint32_t lo = std::min(a, b), hi = std::max(a, b);
-        half[fill[lo]++] = {hi, uint32_t(f), v[(k + 2) % 3], uint8_t(k), uint8_t(a > b)};
+        HalfEdge& h = half[fill[lo]++];  // field by field, in place
+        h.other = hi, h.face = uint32_t(f), h.third = v[(k + 2) % 3], h.k = uint8_t(k), h.reversed = uint8_t(a > b);
       }
     }
   }
@@ -80,29 +85,58 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   // order) a face whose first edge this is is a duplicate when an earlier face
   // of the edge had its third vertex (`seen_at`: the last edge that saw a
   // vertex as a third vertex). Linear however many faces share the edge.
-  t.edges.reserve(half.size() / 2 + 16);
-  t.edge_faces.reserve(half.size());
+  t.edges.reserve(half_count / 2 + 16);
+  t.edge_faces.reserve(half_count);
   std::vector<uint32_t> seen_at(vn, Topology::kNone);
   for (size_t v0 = 0; v0 < vn; ++v0) {
-    HalfEdge* b = half.data() + start[v0];
-    HalfEdge* e = half.data() + start[v0 + 1];
+    HalfEdge* b = half.get() + start[v0];
+    HalfEdge* e = half.get() + start[v0 + 1];
     if (b == e) continue;
     uint64_t compared = 0;
-    std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
-      ++compared;
-      return x.other != y.other ? x.other < y.other : x.face < y.face;  // a face meets (v0, other) once
-    });
+    if (e - b <= 16) {
+      // The bucket was filled in triangle order, so a stable sort by the
+      // larger vertex alone gives the (other, face) order: insertion sort
+      // (the usual bucket holds about six).
+      for (HalfEdge* i = b + 1; i < e; ++i) {
+        const HalfEdge x = *i;
+        HalfEdge* j = i;
+        for (; j > b && (++compared, j[-1].other > x.other); --j) *j = j[-1];
+        *j = x;
+      }
+    } else {
+      std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
+        ++compared;
+        return x.other != y.other ? x.other < y.other : x.face < y.face;  // a face meets (v0, other) once
+      });
+    }
     detail::count_work(compared + uint64_t(e - b));
     for (HalfEdge* run = b; run != e;) {
       HalfEdge* end = run;
       while (end != e && end->other == run->other) ++end;
-      Edge edge{uint32_t(v0),    run->other, uint32_t(t.edge_faces.size()), uint32_t(end - run), EdgeKind::Boundary,
-                EdgeShape::None, 0.0f};
+      // Written in place, field by field (a whole Edge built aside and
+      // copied in stalls on its partly written bytes).
       const uint32_t id = uint32_t(t.edges.size());
+      const uint32_t face_count = uint32_t(end - run);
+      Edge& edge = t.edges.emplace_back();
+      edge.v0 = uint32_t(v0);
+      edge.v1 = run->other;
+      edge.first = uint32_t(t.edge_faces.size());
+      edge.face_count = face_count;
+      edge.kind = face_count == 1                      ? EdgeKind::Boundary
+                  : face_count >= 3                    ? EdgeKind::NonManifold
+                  : run[0].reversed != run[1].reversed ? EdgeKind::Manifold
+                                                       : EdgeKind::Inconsistent;
+      edge.shape = EdgeShape::None;
+      edge.dihedral_degrees = 0.0f;
+      if (face_count == 2) {
+        const uint32_t s0 = 3 * run[0].face + run[0].k, s1 = 3 * run[1].face + run[1].k;
+        t.face_twins[s0] = s1;
+        t.face_twins[s1] = s0;
+      }
       for (HalfEdge* h = run; h != end; ++h) {
         t.edge_faces.push_back(h->face << 1 | h->reversed);
         t.face_edges[3 * size_t(h->face) + h->k] = id;
-        if (edge.face_count < 2) continue;
+        if (face_count < 2) continue;
         const uint32_t third = h->third;
         if (h->k == 0 && seen_at[third] == id) {
           t.face_flags[h->face] |= kFaceDuplicate;
@@ -110,15 +144,10 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
         }
         seen_at[third] = id;
       }
-      if (edge.face_count == 2)
-        edge.kind = run[0].reversed != run[1].reversed ? EdgeKind::Manifold : EdgeKind::Inconsistent;
-      else if (edge.face_count >= 3)
-        edge.kind = EdgeKind::NonManifold;
-      t.edges.push_back(edge);
       run = end;
     }
   }
-  std::vector<HalfEdge>().swap(half);
+  half.reset();
 
   // Face normals (double precision from the float input); zero-area faces.
   std::vector<Vec3> normal(triangle_count, Vec3{0, 0, 0});
@@ -189,9 +218,10 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     if (t.face_flags[f] & kFaceCollapsed) continue;
     const uint32_t* v = indices + 3 * f;
     used[v[0]] = used[v[1]] = used[v[2]] = 1;
+    uint32_t r0 = find_root(parent, v[0]);  // a set's root is its least vertex
     for (int k = 1; k < 3; ++k) {
-      uint32_t r0 = find_root(parent, v[0]), r1 = find_root(parent, v[k]);
-      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);
+      const uint32_t r1 = find_root(parent, v[k]);
+      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1), r0 = std::min(r0, r1);
     }
   }
   for (size_t i = 0; i < vn; ++i) s.vertices += used[i];

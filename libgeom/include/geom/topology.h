@@ -64,7 +64,11 @@ struct Topology {
   // Per edge, its faces: (triangle << 1) | reversed, where reversed = 1 when the
   // triangle traverses the edge v1 -> v0. In triangle order.
   std::vector<uint32_t> edge_faces;
-  std::vector<uint32_t> face_edges;      // 3 per triangle: edges (i0,i1), (i1,i2), (i2,i0); kNone if collapsed
+  std::vector<uint32_t> face_edges;  // 3 per triangle: edges (i0,i1), (i1,i2), (i2,i0); kNone if collapsed
+  // 3 per triangle, beside face_edges: where an edge has exactly two faces
+  // (manifold or inconsistent), the other face's slot of it, 3 * face + k;
+  // else kNone. The walks round a vertex and across an edge read it.
+  std::vector<uint32_t> face_twins;
   std::vector<uint8_t> face_flags;       // FaceFlag bits per triangle
   std::vector<uint32_t> face_component;  // component id per triangle; kNone if collapsed
   TopologyStats stats;
