@@ -15,6 +15,7 @@
 
 #include "geom/png.h"
 #include "geom/scene.h"
+#include "geom/shadow_error.h"
 #include "geom/shadow_reference.h"
 #include "render/platform.h"
 #include "render/render.h"
@@ -160,7 +161,7 @@ inline Comparison compare(const geom::PngImage& mask, const geom::ShadowReferenc
 // Renders the mask of `technique` and computes the reference of the same setup.
 inline Comparison render_and_compare(render::State& state, const geom::Scene& scene, const geom::Camera& view,
                                      const geom::Light& light, render::Technique technique, int map_size,
-                                     geom::PngImage* mask_out = nullptr) {
+                                     geom::PngImage* mask_out = nullptr, geom::ShadowReference* ref_out = nullptr) {
   render::FrameSettings fs;
   fs.technique = technique;
   fs.output = render::Output::Mask;
@@ -173,6 +174,7 @@ inline Comparison render_and_compare(render::State& state, const geom::Scene& sc
                                                      scene.indices.data(), scene.indices.size(), view, light);
   EXPECT_TRUE(ref.ok) << ref.error;
   if (mask_out) *mask_out = mask;
+  const Comparison c = compare(mask, ref);
   if (const char* dir = std::getenv("GEOM_GL_TEST_DUMP")) {  // debugging aid: the mask and the reference
     static int counter = 0;
     const std::string base =
@@ -182,7 +184,17 @@ inline Comparison render_and_compare(render::State& state, const geom::Scene& sc
     geom::write_png(base + ".png", mask, error);
     geom::write_png(base + "_ref.png", r, error);
   }
-  return compare(mask, ref);
+  if (ref_out) *ref_out = std::move(ref);
+  return c;
+}
+
+// The mask of a technique scored by class against the reference (geom/shadow_error.h).
+inline geom::ShadowError score(render::State& state, const geom::Scene& scene, const geom::Camera& view,
+                               const geom::Light& light, render::Technique t, int size) {
+  geom::PngImage mask;
+  geom::ShadowReference ref;
+  render_and_compare(state, scene, view, light, t, size, &mask, &ref);
+  return geom::shadow_error(mask.pixels, ref);
 }
 
 }  // namespace gltest

@@ -57,18 +57,6 @@ std::vector<geom::Light> lights() {
   return out;
 }
 
-// The mask of a technique scored by class against the reference (geom/shadow_error.h).
-geom::ShadowError score(render::State& state, const geom::Scene& scene, const geom::Camera& view,
-                        const geom::Light& light, Technique t, int size) {
-  geom::PngImage mask;
-  render_and_compare(state, scene, view, light, t, size, &mask);
-  const geom::ShadowReference ref =
-      geom::shadow_reference(geom::positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                             scene.indices.size(), view, light);
-  EXPECT_TRUE(ref.ok) << ref.error;
-  return geom::shadow_error(mask.pixels, ref);
-}
-
 // Summed over a point, a spot and a directional light at each map size: wrong
 // pixels of the cast-shadow class (the pipes' shadows on the wall and ground).
 // esm-exact, not esm: the paper's esm dilates the shadow by 0.707 texel, which

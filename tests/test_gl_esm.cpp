@@ -18,17 +18,6 @@ using render::Technique;
 
 namespace {
 
-geom::ShadowError score(render::State& state, const geom::Scene& scene, const geom::Camera& view,
-                        const geom::Light& light, Technique t, int size) {
-  geom::PngImage mask;
-  render_and_compare(state, scene, view, light, t, size, &mask);
-  const geom::ShadowReference ref =
-      geom::shadow_reference(geom::positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                             scene.indices.size(), view, light);
-  EXPECT_TRUE(ref.ok) << ref.error;
-  return geom::shadow_error(mask.pixels, ref);
-}
-
 // Twelve levels of three blocks, each block its own object (so one block's
 // shadow on the block below is cast-class), 0.002 apart vertically.
 geom::Scene jenga_tower() {

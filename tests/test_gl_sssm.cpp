@@ -128,18 +128,6 @@ TEST(GlSssm, BoundaryWithinATexelOfAStraightEdgedOccluder) {
   EXPECT_LT(sssm_wrong * 4, ssm_wrong);
 }
 
-// The mask of a technique scored by class against the reference (geom/shadow_error.h).
-geom::ShadowError score(render::State& state, const geom::Scene& scene, const geom::Camera& view,
-                        const geom::Light& light, Technique t, int size) {
-  geom::PngImage mask;
-  render_and_compare(state, scene, view, light, t, size, &mask);
-  const geom::ShadowReference ref =
-      geom::shadow_reference(geom::positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                             scene.indices.size(), view, light);
-  EXPECT_TRUE(ref.ok) << ref.error;
-  return geom::shadow_error(mask.pixels, ref);
-}
-
 // The default scene's own point light, inside the scene (six cube faces): an
 // upper block's silhouette lies on the lower block's lit face (the receiver's
 // own outline). sssm must be no worse than the simple map there, or within
