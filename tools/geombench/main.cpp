@@ -578,7 +578,10 @@ int main(int argc, char** argv) {
     for (const std::string& l : best) std::printf("  %s\n", l.c_str());
   }
   if (!goal_lines.empty()) {
-    std::printf("\nGoals of the full run (%s time):\n", kind.c_str());
+    const std::string times = rows.empty()   ? std::string("bake: CPU time per call")
+                              : bake.empty() ? kind + " time"
+                                             : kind + " time; bake: CPU time per call";
+    std::printf("\nGoals of the full run (%s):\n", times.c_str());
     for (const std::string& l : goal_lines) std::printf("  %s\n", l.c_str());
   }
 
