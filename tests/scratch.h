@@ -1,12 +1,16 @@
 // Test fixture: a scratch folder under the system's temp directory, named for
 // the test and the process (so parallel ctest runs never share one), removed
-// with everything in it when the fixture goes.
+// with everything in it when the fixture goes; and a file's bytes read and
+// written whole.
 #pragma once
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace testfs {
 
@@ -24,5 +28,15 @@ struct Scratch {
   Scratch& operator=(const Scratch&) = delete;
   std::string operator/(const std::string& name) const { return (dir / name).string(); }
 };
+
+inline std::vector<unsigned char> read_all(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::vector<unsigned char>(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+inline void write_all(const std::string& path, const std::vector<unsigned char>& bytes) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
 
 }  // namespace testfs

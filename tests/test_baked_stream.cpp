@@ -25,15 +25,8 @@
 
 namespace {
 
-std::vector<unsigned char> read_all(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::vector<unsigned char>(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
-
-void write_all(const std::string& path, const std::vector<unsigned char>& bytes) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-}
+using testfs::read_all;
+using testfs::write_all;
 
 // A closed, rippled sphere: n x n quads and two fans (some edges coplanar, some concave).
 geom::Scene sphere(int n) {

@@ -16,18 +16,12 @@
 #include <vector>
 
 #include "geom/baked_writer.h"
+#include "scratch.h"
 
 namespace {
 
-std::vector<unsigned char> read_all(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::vector<unsigned char>(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-}
-
-void write_all(const std::string& path, const std::vector<unsigned char>& bytes) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-}
+using testfs::read_all;
+using testfs::write_all;
 
 std::vector<geom::BakedSection> random_sections(std::mt19937& rng) {
   std::vector<geom::BakedSection> sections;

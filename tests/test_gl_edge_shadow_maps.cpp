@@ -3,7 +3,8 @@
 // reconstruct the silhouette between texels, so their masks are closer to the
 // ray-cast reference than the simple map's. Also: they agree with the
 // reference away from boundaries as well as a shadow map does; and on a jenga
-// tower and the default scene's block tower, seed 001's Sect. 5.2 cases.
+// tower and the default scene's block tower, seed 001's Sect. 5.2 cases (with
+// esm-exact's and sssm's bounds beside edsm's).
 //
 //   top view:   wall  ==================
 //                        \      /
@@ -110,7 +111,7 @@ TEST(GlEdgeShadowMaps, PointLightInsideTheSceneAsCubeFaces) {
     EXPECT_GT(s.wrong_cast, 50u) << "the simple shadow map should show its staircase at this size";
     EXPECT_LE(d.wrong_cast * 10, s.wrong_cast) << "issue 18: edsm within a tenth of the simple map's";
     EXPECT_LT(e.wrong_cast, s.wrong_cast);
-    EXPECT_LT(x.wrong_cast, s.wrong_cast);
+    EXPECT_LE(x.wrong_cast * 3, s.wrong_cast) << "issue 18: esm-exact within a third of the simple map's";
   }
 }
 
@@ -122,7 +123,10 @@ TEST(GlEdgeShadowMaps, PointLightInsideTheSceneAsCubeFaces) {
 // texel's edge disagrees, edsm was 208 and 34 wrong pixels against ssm's 347
 // and 114 at 128 and 256; with the plane through the other three texels 100
 // and 10 (half of ssm's, not a tenth); with two edges per texel
-// (shaders/lookup_edsm.frag) 19 and 1.
+// (shaders/lookup_edsm.frag) 19 and 1. esm-exact (seed 000's quads with a
+// depth-resolved priority) must reach a third of ssm's, and the paper's esm at
+// least beat it: with the dilation's z-bias at 2e-3 of window depth instead of
+// 2e-2 esm got 320 / 615 wrong against ssm's 347 / 114, and this test failed.
 geom::Scene jenga_tower() {
   geom::Scene s;
   add_ground(s, 4);
@@ -151,14 +155,16 @@ TEST(GlEdgeShadowMaps, BlocksShadowingTheBlockBelow) {
   for (int size : {128, 256}) {
     const geom::ShadowError s = score(*state, scene, view, light, Technique::Ssm, size);
     const geom::ShadowError d = score(*state, scene, view, light, Technique::Edsm, size);
+    const geom::ShadowError e = score(*state, scene, view, light, Technique::Esm, size);
     const geom::ShadowError x = score(*state, scene, view, light, Technique::EsmExact, size);
-    std::printf("jenga tower, map %d: wrong cast-class pixels ssm %zu, edsm %zu, esm-exact %zu (of %zu)\n", size,
-                s.wrong_cast, d.wrong_cast, x.wrong_cast, s.cast_pixels);
+    std::printf("jenga tower, map %d: wrong cast-class pixels ssm %zu, edsm %zu, esm %zu, esm-exact %zu (of %zu)\n",
+                size, s.wrong_cast, d.wrong_cast, e.wrong_cast, x.wrong_cast, s.cast_pixels);
     SCOPED_TRACE("map " + std::to_string(size));
     EXPECT_GT(s.cast_pixels, 3000u);
     EXPECT_GT(s.wrong_cast, 100u) << "the simple shadow map should miss the blocks' thin shadows at this size";
     EXPECT_LE(d.wrong_cast * 10, s.wrong_cast);
-    EXPECT_LT(x.wrong_cast, s.wrong_cast);
+    EXPECT_LE(x.wrong_cast * 3, s.wrong_cast) << "issue 18's esm goal, met by esm-exact";
+    EXPECT_LT(e.wrong_cast, s.wrong_cast) << "the paper's esm at least beats the simple map";
   }
 }
 
@@ -169,7 +175,10 @@ TEST(GlEdgeShadowMaps, BlocksShadowingTheBlockBelow) {
 // where no stored edge lies in front of the receiver (the earlier lookup's
 // fallback, kept in lookup_edsm.frag's step 1 for this check), edsm had 33 and
 // 18 wrong cast-class pixels here at 512 and 1024 against ssm's 1 and 0 (this
-// test failed); with step 1 (lit) 0 and 0.
+// test failed); with step 1 (lit) 0 and 0. sssm (shadow silhouette maps) has
+// the same rule for its silhouette points (lookup_sssm.frag) and must be no
+// worse than ssm or within 1.5x of edsm: with the nearest comparison it had 37
+// and 19 wrong cast-class pixels here.
 TEST(GlEdgeShadowMaps, ReceiversOwnOutlineNoWorseThanTheSimpleMap) {
   ASSERT_NE(context(), nullptr);
   geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
@@ -182,12 +191,18 @@ TEST(GlEdgeShadowMaps, ReceiversOwnOutlineNoWorseThanTheSimpleMap) {
   for (int size : {512, 1024}) {
     const geom::ShadowError s = score(*state, imported.scene, view, light, Technique::Ssm, size);
     const geom::ShadowError d = score(*state, imported.scene, view, light, Technique::Edsm, size);
-    std::printf("default scene, map %d: wrong visible / cast-class pixels ssm %zu / %zu, edsm %zu / %zu (of %zu)\n",
-                size, s.wrong_visible, s.wrong_cast, d.wrong_visible, d.wrong_cast, s.visible_pixels);
+    const geom::ShadowError x = score(*state, imported.scene, view, light, Technique::Sssm, size);
+    std::printf(
+        "default scene, map %d: wrong visible / cast-class pixels ssm %zu / %zu, edsm %zu / %zu, sssm %zu / %zu (of "
+        "%zu)\n",
+        size, s.wrong_visible, s.wrong_cast, d.wrong_visible, d.wrong_cast, x.wrong_visible, x.wrong_cast,
+        s.visible_pixels);
     SCOPED_TRACE("map " + std::to_string(size));
     EXPECT_GT(s.cast_pixels, 10000u);
     EXPECT_LE(d.wrong_visible, s.wrong_visible);
     EXPECT_LE(d.wrong_cast, s.wrong_cast);
+    EXPECT_TRUE(x.wrong_cast <= s.wrong_cast || 2 * x.wrong_cast <= 3 * d.wrong_cast)
+        << "sssm " << x.wrong_cast << ", ssm " << s.wrong_cast << ", edsm " << d.wrong_cast;
   }
 }
 

@@ -81,12 +81,7 @@ void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget targe
   end_edge_pass(f, target);
 }
 
-bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float texels, const std::string& frag) {
-  GLuint p = edge_program(f, light_clip, slope, GL_RGBA32F, {"esm_quad.vert", frag});
-  if (!p) return false;
-  set(p, "u_extrude_scale", 2.0f * texels / (float(f.n) * projection_scale(light_clip)));
-  set(p, "u_planes", 2);
-  begin_edge_pass(f, p, "extended map quads", EdgeTarget::ExtendedMax);
+void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip) {
   for (const Caster& c : f.s.casters) {
     set(p, "u_light_view_proj", at(glm::dmat4(light_clip), c.origin));
     set(p, "u_light", local_light(c, glm::dvec4(f.light.position)));
@@ -94,6 +89,15 @@ bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float tex
     glBindVertexArray(c.esm_vao);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
   }
+}
+
+bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float texels, const std::string& frag) {
+  GLuint p = edge_program(f, light_clip, slope, GL_RGBA32F, {"esm_quad.vert", frag});
+  if (!p) return false;
+  set(p, "u_extrude_scale", 2.0f * texels / (float(f.n) * projection_scale(light_clip)));
+  set(p, "u_planes", 2);
+  begin_edge_pass(f, p, "extended map quads", EdgeTarget::ExtendedMax);
+  draw_esm_quads(f, p, light_clip);
   end_edge_pass(f, EdgeTarget::ExtendedMax);
   return true;
 }

@@ -35,6 +35,10 @@ void draw_adjacency(const State& s);
 // begin_edge_pass, draw_adjacency, end_edge_pass.
 void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target);
 
+// Every caster's ESM silhouette quads (esm_quad.vert with program `p`, its
+// u_light_view_proj / u_light set per caster), between the two.
+void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip);
+
 // esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each
 // `texels` wide beyond its edge) with the fragment shader `frag`, MAX blended
 // into the edge map after the face's depth map (bias factor `slope`).

@@ -31,7 +31,7 @@ bool esm_face(Frame& f, const glm::mat4& light_clip) {
 // side lengthened to 2 texels (reach 2; a uniform of esm_quad.vert, not kept): 0.765% at 512, 3 texels out and 1.5
 // in: 0.765%, 6 out and 1.5 in (reach 3): 0.711%, 4 out and 1.5 in (reach 3):
 // 0.169 / 0.085 / 0.034%. Reach 3 was better on geombench's jenga but worse on
-// tests/test_gl_esm.cpp's tower (30 / 10 pixels wrong at 128 / 256 against
+// the GL tests' jenga tower (test_gl_edge_shadow_maps.cpp; 30 / 10 pixels wrong at 128 / 256 against
 // 23 / 6 with reach 2): 2 kept.
 constexpr float kExactTexels = 4.0f, kReach = 2.0f;
 
@@ -42,13 +42,7 @@ bool esm_exact_face(Frame& f, const glm::mat4& light_clip) {
   set(p, "u_planes", 2);
   set(p, "u_reach", kReach);
   begin_edge_pass(f, p, "extended map quads", EdgeTarget::Distance);
-  for (const Caster& c : f.s.casters) {
-    set(p, "u_light_view_proj", at(glm::dmat4(light_clip), c.origin));
-    set(p, "u_light", local_light(c, glm::dvec4(f.light.position)));
-    glBindTextureUnit(2, c.esm_planes);
-    glBindVertexArray(c.esm_vao);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
-  }
+  draw_esm_quads(f, p, light_clip);
   end_edge_pass(f, EdgeTarget::Distance);
   return true;
 }
