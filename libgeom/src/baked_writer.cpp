@@ -195,38 +195,6 @@ bool parts_of(const std::vector<BakedSection>& sections, Layout& l, std::vector<
   return true;
 }
 
-// Whether the regular file at `path` holds exactly the concatenated parts,
-// read in pieces (never a whole copy of either in memory).
-bool holds(const std::string& path, const std::vector<FilePart>& parts, uint64_t size) {
-  std::vector<unsigned char> buffer;
-  try {
-    buffer.resize(size_t(std::min<uint64_t>(size, uint64_t(1) << 20)) + 1);
-  } catch (const std::bad_alloc&) {
-    return false;  // then it is written
-  }
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-  if (fd < 0) return false;
-  struct stat st {};
-  bool same = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && uint64_t(st.st_size) == size;
-  for (size_t p = 0; same && p < parts.size(); ++p) {
-    const unsigned char* want = static_cast<const unsigned char*>(parts[p].data);
-    for (size_t done = 0; same && done < parts[p].size;) {
-      const size_t n = std::min(buffer.size(), parts[p].size - done);
-      size_t got = 0;
-      while (got < n) {
-        const ssize_t r = ::read(fd, buffer.data() + got, n - got);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) break;
-        got += size_t(r);
-      }
-      same = got == n && std::memcmp(buffer.data(), want + done, n) == 0;
-      done += n;
-    }
-  }
-  ::close(fd);
-  return same;
-}
-
 }  // namespace
 
 bool write_baked(const std::string& path, const std::vector<BakedSection>& sections, std::string& error,
@@ -235,21 +203,6 @@ bool write_baked(const std::string& path, const std::vector<BakedSection>& secti
   std::vector<FilePart> parts;
   if (!parts_of(sections, l, parts, error)) return false;
   if (!write_file_atomically(path, parts.data(), parts.size(), error)) return false;
-  if (crcs) *crcs = std::move(l.crcs);
-  return true;
-}
-
-bool write_baked_if_changed(const std::string& path, const std::vector<BakedSection>& sections, bool& unchanged,
-                            std::string& error, std::vector<uint32_t>* crcs) {
-  unchanged = false;
-  Layout l;
-  std::vector<FilePart> parts;
-  if (!parts_of(sections, l, parts, error)) return false;
-  if (holds(path, parts, l.end)) {
-    unchanged = true;
-  } else if (!write_file_atomically(path, parts.data(), parts.size(), error)) {
-    return false;
-  }
   if (crcs) *crcs = std::move(l.crcs);
   return true;
 }
@@ -457,6 +410,20 @@ bool BakedFileWriter::finish(bool& unchanged, std::vector<uint32_t>* crcs) {
     for (const Entry& e : s.entries) crcs->push_back(e.crc);
   }
   return true;
+}
+
+// The streaming writer's comparison with the file already there serves the
+// whole-vector form too: nothing written while every byte matches.
+bool write_baked_if_changed(const std::string& path, const std::vector<BakedSection>& sections, bool& unchanged,
+                            std::string& error, std::vector<uint32_t>* crcs) {
+  unchanged = false;
+  BakedFileWriter w;
+  w.open(path, true);
+  bool ok = w.expect(sections.size());
+  for (size_t i = 0; ok && i < sections.size(); ++i) ok = w.put(sections[i]);
+  ok = ok && w.finish(unchanged, crcs);
+  if (!ok) error = w.error();
+  return ok;
 }
 
 }  // namespace geom

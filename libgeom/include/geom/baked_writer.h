@@ -89,7 +89,8 @@ bool write_baked(const std::string& path, const std::vector<BakedSection>& secti
 
 // The same, unless the regular file at `path` already holds exactly those
 // bytes: then it is left untouched (its mtime kept) and `unchanged` is set.
-// The file is compared in pieces against the sections' own buffers, so
+// The file is compared in pieces against the sections' own buffers (by the
+// BakedFileWriter below, as a streamed bake does), so
 // neither the new layout nor the old file is ever copied whole into memory.
 bool write_baked_if_changed(const std::string& path, const std::vector<BakedSection>& sections, bool& unchanged,
                             std::string& error, std::vector<uint32_t>* crcs = nullptr);
