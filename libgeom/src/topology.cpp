@@ -130,7 +130,9 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       const bool decided = (p > kTiny) & (p < kHuge) &
                            (coplanar | ((g < -kMargin * p) & (bound > kTiny) & (std::fabs(side) > kMargin * bound)));
       if (decided) {
-        const int shape = coplanar ? int(EdgeShape::Coplanar) : side < 0.0 ? int(EdgeShape::Convex) : int(EdgeShape::Concave);
+        // Coplanar (1), else convex (2) behind f0's plane, else concave (3); in arithmetic, not branches.
+        const int convex_or_concave = int(EdgeShape::Concave) - int(side < 0.0);
+        const int shape = convex_or_concave - int(coplanar) * (convex_or_concave - int(EdgeShape::Coplanar));
         edge.shape = EdgeShape(shape);
         ++shape_count[shape];
         return;
@@ -162,7 +164,8 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   // Components on the way: parent[v] is kNone until v is on an edge, then
   // at most v (a root is its set's least vertex).
   t.edges.reserve(half_count / 2 + 16);
-  t.edge_faces.reserve(half_count);
+  t.edge_faces.resize(half_count);  // in key order: a half-edge's entry sits where its key does
+  uint32_t* const edge_faces = t.edge_faces.data();
   std::vector<uint32_t> seen_at(vn, kNone);
   std::vector<uint32_t> parent(vn, kNone);
   std::vector<uint8_t> open(vn, 0);  // v0 of a boundary or non-manifold edge
@@ -200,7 +203,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       Edge& edge = t.edges.emplace_back();
       edge.v0 = uint32_t(v0);
       edge.v1 = v1;
-      edge.first = uint32_t(t.edge_faces.size());
+      edge.first = uint32_t(run - keys.get());
       edge.face_count = face_count;
       edge.shape = EdgeShape::None;
       edge.dihedral_degrees = 0.0f;
@@ -216,7 +219,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
         edge.kind = EdgeKind::Boundary;
         ++s.boundary_edges;
         open[v0] = 1;
-        t.edge_faces.push_back((sl / 3) << 1 | uint32_t(indices[sl] != v0));
+        edge_faces[edge.first] = (sl / 3) << 1 | uint32_t(indices[sl] != v0);
         t.face_edges[sl] = id;
         run = end;
         continue;
@@ -229,9 +232,9 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       }
       for (uint64_t* h = run; h != end; ++h) {
         const uint32_t sl = uint32_t(*h), f = sl / 3, k = sl - 3 * f;
-        t.edge_faces.push_back(f << 1 | uint32_t(indices[sl] != v0));
+        edge_faces[h - keys.get()] = f << 1 | uint32_t(indices[sl] != v0);
         t.face_edges[sl] = id;
-        const uint32_t third = indices[3 * f + (k == 0 ? 2 : k - 1)];
+        const uint32_t third = indices[sl + 2 - 3 * uint32_t(k != 0)];  // the face's corner k + 2
         if (k == 0 && seen_at[third] == id) {
           t.face_flags[f] |= kFaceDuplicate;
           ++s.duplicate_triangles;
@@ -242,12 +245,12 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
         const uint32_t s0 = uint32_t(run[0]), s1 = uint32_t(run[1]);
         t.face_twins[s0] = s1;
         t.face_twins[s1] = s0;
-        const uint32_t* pair = t.edge_faces.data() + edge.first;
+        const uint32_t* pair = edge_faces + edge.first;
         if ((pair[0] ^ pair[1]) & 1) {
           edge.kind = EdgeKind::Manifold;
           ++s.manifold_edges;
-          const uint32_t f1 = pair[1] >> 1, k1 = s1 - 3 * f1;
-          classify(edge, pair[0] >> 1, f1, indices[3 * f1 + (k1 == 0 ? 2 : k1 - 1)]);
+          const uint32_t f1 = pair[1] >> 1;
+          classify(edge, pair[0] >> 1, f1, indices[s1 + 2 - 3 * uint32_t(s1 != 3 * f1)]);
         } else {
           edge.kind = EdgeKind::Inconsistent;
           ++s.inconsistent_edges;
