@@ -360,13 +360,18 @@ bool BakedFileWriter::write(const void* data, size_t size) {
   if (s.failed) return false;
   if (!s.in_section || size > s.size - s.done) return s.fail("internal: more bytes than the section has");
   if (size == 0) return true;
-  const unsigned char* p = static_cast<const unsigned char*>(data);
-  s.crc = geom::crc32c(p, size, s.crc);
-  const uint64_t pos = s.offset + s.done;
-  if (s.comparing && !s.old_holds(p, pos, size) && !s.start_writing(pos)) return false;
-  if (!s.comparing && !s.start_writing(pos)) return false;
-  if (!s.comparing && !s.pwrite_all(p, size, pos)) return false;
-  s.done += size;
+  // In pieces that stay in the cache between the checksum and the write (a
+  // large section read twice from memory otherwise).
+  constexpr size_t kPiece = size_t(256) << 10;
+  for (const unsigned char* p = static_cast<const unsigned char*>(data); size > 0;) {
+    const size_t n = std::min(size, kPiece);
+    s.crc = geom::crc32c(p, n, s.crc);
+    const uint64_t pos = s.offset + s.done;
+    if (s.comparing && !s.old_holds(p, pos, n) && !s.start_writing(pos)) return false;
+    if (!s.comparing && !s.start_writing(pos)) return false;
+    if (!s.comparing && !s.pwrite_all(p, n, pos)) return false;
+    s.done += n, p += n, size -= n;
+  }
   return true;
 }
 
