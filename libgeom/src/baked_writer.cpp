@@ -222,6 +222,7 @@ struct BakedFileWriter::State {
   std::vector<Entry> entries;
   bool in_section = false;
   uint64_t offset = 0, size = 0, done = 0;  // the section being put
+  bool sized = true;                        // false: its size is what write() gives (begin_records)
   uint32_t crc = 0;
   std::vector<unsigned char> buffer;  // for compares and copies
   bool failed = false;
@@ -355,6 +356,16 @@ bool BakedFileWriter::begin(const BakedSection& section, uint64_t size) {
   return true;
 }
 
+bool BakedFileWriter::begin_records(const BakedSection& section) {
+  BakedSection first = section;
+  first.count = 0;
+  if (!begin(first, 0)) return false;
+  State& s = *s_;
+  s.sized = false;
+  s.size = UINT64_MAX;
+  return true;
+}
+
 bool BakedFileWriter::write(const void* data, size_t size) {
   State& s = *s_;
   if (s.failed) return false;
@@ -378,8 +389,15 @@ bool BakedFileWriter::write(const void* data, size_t size) {
 bool BakedFileWriter::end() {
   State& s = *s_;
   if (s.failed) return false;
-  if (!s.in_section || s.done != s.size) return s.fail("internal: fewer bytes than the section has");
-  s.entries.back().crc = s.crc;
+  if (!s.in_section || (s.sized && s.done != s.size)) return s.fail("internal: fewer bytes than the section has");
+  Entry& e = s.entries.back();
+  if (!s.sized) {
+    if (s.done % e.stride) return s.fail("internal: section '" + e.name + "' ends inside a record");
+    e.count = s.done / e.stride;
+    e.size = s.size = s.done;
+    s.sized = true;
+  }
+  e.crc = s.crc;
   s.at = s.offset + s.size;
   s.in_section = false;
   return true;
