@@ -184,6 +184,40 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
                              : 0);
       if (!out->expect(n)) throw WriteFailed();
     }
+    // Streamed without lights (no light volume reads the generic one), the
+    // volume's side records and caps go to the file as the volume makes them,
+    // a piece at a time: they are most of the file, and were the bake's peak.
+    const bool stream_volume = out && asked.volume && lights.empty();
+    int volume_open = 0;  // 1: the sides section is begun, 2: the caps section
+    const auto records_meta = [](SectionType type, const char* name, uint32_t stride, uint64_t count) {
+      BakedSection m;
+      m.type = type, m.format = Format::Record, m.stride = stride, m.name = name;
+      m.count = count, m.view_size = size_t(count * stride);
+      return m;
+    };
+    const auto open_volume = [&](int upto) {
+      if (volume_open < 1 && upto >= 1) {
+        if (!out->begin_records(records_meta(SectionType::VolumeSides, "volume_sides", sizeof(SvSide), 0)))
+          throw WriteFailed();
+        volume_open = 1;
+      }
+      if (volume_open < 2 && upto >= 2) {
+        if (!out->end() ||
+            !out->begin_records(records_meta(SectionType::VolumeCaps, "volume_caps", sizeof(SvCap), 0)))
+          throw WriteFailed();
+        volume_open = 2;
+      }
+    };
+    if (stream_volume) {
+      po.volume_options.sides_out = [&](const SvSide* p, size_t n) {
+        open_volume(1);
+        if (!out->write(p, n * sizeof(SvSide))) throw WriteFailed();
+      };
+      po.volume_options.caps_out = [&](const SvCap* p, size_t n) {
+        open_volume(2);
+        if (!out->write(p, n * sizeof(SvCap))) throw WriteFailed();
+      };
+    }
     // Sections view the buffers (no copy) inside the run `kept` holds; with
     // `out` they are written (and their buffers freed) as they are made.
     const auto kept = std::make_shared<Pipeline>();
@@ -265,8 +299,15 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
               if (out) free_vector(p.planes.planes), free_vector(p.planes.face_plane);  // read by the volume last
             }
             if (!asked.volume) break;
-            emit(record_section(SectionType::VolumeSides, "volume_sides", p.volume.sides, kept));
-            emit(record_section(SectionType::VolumeCaps, "volume_caps", p.volume.caps, kept));
+            if (stream_volume) {  // written as they came: the sections end here
+              open_volume(2);
+              if (!out->end()) throw WriteFailed();
+              s.push_back(records_meta(SectionType::VolumeSides, "volume_sides", sizeof(SvSide), p.volume.stats.sides));
+              s.push_back(records_meta(SectionType::VolumeCaps, "volume_caps", sizeof(SvCap), p.volume.stats.caps));
+            } else {
+              emit(record_section(SectionType::VolumeSides, "volume_sides", p.volume.sides, kept));
+              emit(record_section(SectionType::VolumeCaps, "volume_caps", p.volume.caps, kept));
+            }
             emit(view_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", p.volume.planes, kept));
             js += "\"volume\":" + volume_json(p.volume.stats) + ",";
             r.volume = p.volume.stats;
