@@ -130,9 +130,11 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
       const bool decided = (p > kTiny) & (p < kHuge) &
                            (coplanar | ((g < -kMargin * p) & (bound > kTiny) & (std::fabs(side) > kMargin * bound)));
       if (decided) {
-        // Coplanar (1), else convex (2) behind f0's plane, else concave (3); in arithmetic, not branches.
-        const int convex_or_concave = int(EdgeShape::Concave) - int(side < 0.0);
-        const int shape = convex_or_concave - int(coplanar) * (convex_or_concave - int(EdgeShape::Coplanar));
+        // Coplanar, else convex behind f0's plane, else concave: a table
+        // lookup (the compiler turns arithmetic on the two tests into a branch).
+        static constexpr uint8_t kShape[4] = {uint8_t(EdgeShape::Concave), uint8_t(EdgeShape::Coplanar),
+                                              uint8_t(EdgeShape::Convex), uint8_t(EdgeShape::Coplanar)};
+        const int shape = kShape[int(coplanar) | int(side < 0.0) << 1];
         edge.shape = EdgeShape(shape);
         ++shape_count[shape];
         return;
@@ -235,10 +237,10 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
         edge_faces[h - keys.get()] = f << 1 | uint32_t(indices[sl] != v0);
         t.face_edges[sl] = id;
         const uint32_t third = indices[sl + 2 - 3 * uint32_t(k != 0)];  // the face's corner k + 2
-        if (k == 0 && seen_at[third] == id) {
-          t.face_flags[f] |= kFaceDuplicate;
-          ++s.duplicate_triangles;
-        }
+        // Without a branch on k (a third of the half-edges, in no order).
+        const uint32_t duplicate = uint32_t(seen_at[third] == id) & uint32_t(k == 0);
+        t.face_flags[f] |= uint8_t(duplicate * kFaceDuplicate);
+        s.duplicate_triangles += duplicate;
         seen_at[third] = id;
       }
       if (face_count == 2) {
