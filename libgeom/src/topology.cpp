@@ -69,7 +69,10 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   // count per smaller vertex (at lo + 2: after the scatter below, bucket v
   // is [start[v], start[v + 1])).
   std::vector<uint32_t> start(vn + 2, 0);
-  std::unique_ptr<FaceNormal[]> normal(new FaceNormal[triangle_count]);  // read only where written
+  // Read only where written. The cross product alone (24 bytes a face, as
+  // main's unit normals were): its squared length is recomputed where read,
+  // so these and the keys together take no more than the 16-byte records did.
+  std::unique_ptr<Vec3[]> normal(new Vec3[triangle_count]);
   for (size_t f = 0; f < triangle_count; ++f) {
     const uint32_t* v = indices + 3 * f;
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
@@ -82,7 +85,7 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
     ++start[std::min(v[2], v[0]) + 2];
     const Vec3 n = vec3::cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
     const double nn = vec3::dot(n, n);
-    normal[f] = {n, nn};
+    normal[f] = n;
     if (!(nn > 0.0)) {  // the length sqrt(nn) is not > 0
       t.face_flags[f] = kFaceZeroArea;
       ++s.zero_area_triangles;
@@ -116,8 +119,8 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   // and concave come in no order a predictor learns).
   uint64_t shape_count[4] = {0, 0, 0, 0};  // by EdgeShape
   auto classify = [&](Edge& edge, uint32_t f0, uint32_t f1, uint32_t far) {
-    const FaceNormal& a = normal[f0];
-    const FaceNormal& b = normal[f1];
+    const FaceNormal a{normal[f0], vec3::dot(normal[f0], normal[f0])};  // as the face pass computed nn
+    const FaceNormal b{normal[f1], vec3::dot(normal[f1], normal[f1])};
     if (!(a.nn > 0.0) || !(b.nn > 0.0)) return;
     const Vec3 d = sub(positions[far], positions[edge.v0]);
     if (fast_tests) {
