@@ -219,7 +219,10 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
       const Vec3 p0 = (ea & 1u) ? v1 : v0, p1 = (ea & 1u) ? v0 : v1;  // A traverses p0 -> p1
       const Vec3 na = normal(fa), nb = normal(fb) * (inconsistent ? -1.0 : 1.0);
       const uint32_t* w = indices + 3 * size_t(fb);
-      const uint32_t far = w[0] != e.v0 && w[0] != e.v1 ? w[0] : w[1] != e.v0 && w[1] != e.v1 ? w[1] : w[2];
+      // The first of B's vertices off the edge, selected by masks: which it
+      // is follows no pattern a branch predictor could learn.
+      const uint32_t m0 = 0u - uint32_t(w[0] != e.v0 && w[0] != e.v1), m1 = 0u - uint32_t(w[1] != e.v0 && w[1] != e.v1);
+      const uint32_t far = (w[0] & m0) | (~m0 & ((w[1] & m1) | (~m1 & w[2])));
       const bool concave = dot(na, pos(far) - p0) > 0;
       if (concave && !options.keep_concave) {
         ++st.skipped_concave;
