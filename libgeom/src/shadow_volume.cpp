@@ -77,11 +77,23 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
 
   // Side records, in edge order; room for the most (a pair: two records, else
   // one per face), so the buffers never grow.
-  {
+  // Streamed (options.sides_out), the records go out a piece at a time and
+  // only a piece is ever held.
+  constexpr size_t kPiece = 4096;
+  const bool stream_sides = bool(options.sides_out), stream_caps = bool(options.caps_out);
+  uint64_t sides_sent = 0, caps_sent = 0;
+  if (stream_sides) {
+    sv.sides.reserve(kPiece);
+  } else {
     const size_t most = topology.edge_faces.size();  // the sum of those over the edges
     sv.sides.reserve(most);
     sv.side_component.reserve(most);
   }
+  const auto send_sides = [&] {
+    options.sides_out(sv.sides.data(), sv.sides.size());
+    sides_sent += sv.sides.size();
+    sv.sides.clear();
+  };
   // Each record written in place, field by field (one built aside and copied
   // in stalls on its partly written bytes).
   const auto add_side = [&](const Float3& p0, const Float3& p1, uint32_t plane_a, uint32_t plane_b,
@@ -91,7 +103,10 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     put(s.p1, p1, sv.origin);
     s.plane_a = plane_a;
     s.plane_b = plane_b;
-    sv.side_component.push_back(component_id);
+    if (!stream_sides)
+      sv.side_component.push_back(component_id);
+    else if (sv.sides.size() == kPiece)
+      send_sides();
   };
   for (const Edge& e : topology.edges) {
     gather(e);
@@ -121,9 +136,23 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     }
   }
 
+  if (stream_sides) {
+    if (!sv.sides.empty()) send_sides();
+    std::vector<SvSide>().swap(sv.sides);
+  }
+
   // Caps: every non-degenerate face.
-  sv.caps.reserve(triangle_count - st.degenerate_faces);
-  sv.cap_component.reserve(triangle_count - st.degenerate_faces);
+  if (stream_caps) {
+    sv.caps.reserve(kPiece);
+  } else {
+    sv.caps.reserve(triangle_count - st.degenerate_faces);
+    sv.cap_component.reserve(triangle_count - st.degenerate_faces);
+  }
+  const auto send_caps = [&] {
+    options.caps_out(sv.caps.data(), sv.caps.size());
+    caps_sent += sv.caps.size();
+    sv.caps.clear();
+  };
   for (size_t f = 0; f < triangle_count; ++f) {
     if (!has_plane(uint32_t(f))) continue;
     SvCap& c = sv.caps.emplace_back();
@@ -131,10 +160,17 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     put(c.b, positions[indices[3 * f + 1]], sv.origin);
     put(c.c, positions[indices[3 * f + 2]], sv.origin);
     c.plane = fp.face_plane[f] | (double_sided[f] ? SvCap::kDoubleSided : 0u);
-    sv.cap_component.push_back(component[f]);
+    if (!stream_caps)
+      sv.cap_component.push_back(component[f]);
+    else if (sv.caps.size() == kPiece)
+      send_caps();
   }
-  st.sides = sv.sides.size();
-  st.caps = sv.caps.size();
+  if (stream_caps) {
+    if (!sv.caps.empty()) send_caps();
+    std::vector<SvCap>().swap(sv.caps);
+  }
+  st.sides = sides_sent + sv.sides.size();
+  st.caps = caps_sent + sv.caps.size();
   const uint64_t plane_bytes = 16 * uint64_t(sv.planes.size() / 4);
   st.bytes = st.sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
   st.naive_bytes = st.naive_sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;

@@ -120,6 +120,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geom/baked_records.h"
@@ -183,6 +184,13 @@ struct ShadowVolume {
 
 struct ShadowVolumeOptions {
   bool one_sided_closed = false;  // classic one-sided closed components (lights outside them only)
+  // Set, the side records (then the caps) go to it in pieces, in order, as
+  // they are made, and are not kept: the result's sides and side_component
+  // (caps and cap_component) stay empty, its stats count every record. What
+  // it throws ends the build. (A stream of the volume cannot feed
+  // build_light_volume.)
+  std::function<void(const SvSide* records, size_t count)> sides_out;
+  std::function<void(const SvCap* records, size_t count)> caps_out;
 };
 
 // The generic, light-independent volume of a welded mesh.
