@@ -263,3 +263,57 @@ TEST(BakedStream, GivenUpOrFailedLeavesNothing) {
   EXPECT_FALSE(writer.put(one));  // every later call fails too
   EXPECT_EQ(read_all(path), old);
 }
+
+// A section begun without its size (begin_records) is the bytes written to
+// it: the same file as put() of the whole, in any pieces; a piece that ends
+// inside a record fails at end() and nothing is left.
+TEST(BakedStream, RecordsOfUnknownCountAreTheBytesWritten) {
+  testfs::Scratch dir("baked_stream_records");
+  using geom::baked::Format;
+  using geom::baked::SectionType;
+  std::mt19937 rng(7);
+  for (int round = 0; round < 20; ++round) {
+    std::vector<uint32_t> a(rng() % 3000), b(1 + rng() % 50);
+    for (uint32_t& x : a) x = rng();
+    for (uint32_t& x : b) x = rng();
+    const std::vector<geom::BakedSection> whole = {
+        geom::make_baked_section(SectionType::VolumeSides, Format::U32, 4, "a", a),
+        geom::make_baked_section(SectionType::Indices, Format::U32, 4, "b", b)};
+    std::vector<unsigned char> expected;
+    std::string error;
+    ASSERT_TRUE(geom::serialize_baked(whole, expected, error)) << error;
+
+    const std::string path = dir / "out.gbake";
+    geom::BakedFileWriter writer;
+    writer.open(path, round % 2 == 0);  // compared with the last round's file, or written
+    ASSERT_TRUE(writer.expect(2));
+    geom::BakedSection head = whole[0];
+    head.count = 12345;  // ignored
+    ASSERT_TRUE(writer.begin_records(head)) << writer.error();
+    for (size_t at = 0; at < a.size();) {
+      const size_t n = std::min(a.size() - at, size_t(rng() % 700));
+      ASSERT_TRUE(writer.write(a.data() + at, 4 * n)) << writer.error();
+      at += n;
+    }
+    ASSERT_TRUE(writer.end()) << writer.error();
+    ASSERT_TRUE(writer.put(whole[1])) << writer.error();
+    bool unchanged = false;
+    ASSERT_TRUE(writer.finish(unchanged)) << writer.error();
+    EXPECT_EQ(read_all(path), expected) << "round " << round;
+  }
+
+  geom::BakedFileWriter writer;
+  const std::string path = dir / "torn.gbake";
+  writer.open(path, false);
+  ASSERT_TRUE(writer.expect(1));
+  geom::BakedSection s = geom::make_baked_section(SectionType::VolumeSides, Format::Record, 32, "sides",
+                                                  std::vector<unsigned char>(64));
+  ASSERT_TRUE(writer.begin_records(s));
+  const std::vector<unsigned char> bytes(40, 1);
+  ASSERT_TRUE(writer.write(bytes.data(), bytes.size()));
+  EXPECT_FALSE(writer.end());
+  EXPECT_NE(writer.error().find("ends inside a record"), std::string::npos) << writer.error();
+  bool unchanged = true;
+  EXPECT_FALSE(writer.finish(unchanged));
+  EXPECT_FALSE(std::filesystem::exists(path));
+}

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <random>
 #include <vector>
@@ -346,3 +347,39 @@ TEST(EsmQuads, EmptyMesh) {
 }
 
 }  // namespace
+
+// The quads streamed (EsmOptions::quads_out) are the kept ones, in order, in
+// pieces of whole edges (at most 4096 + an edge's), with the same planes and
+// stats; none is kept. Every fixture, concave edges kept or not, and a sphere
+// of more than 4096 quads so the pieces split.
+TEST(EsmQuads, StreamedQuadsAreTheKeptOnes) {
+  std::vector<Mesh> meshes = {fixtures::box(-1, -1, -1, 1, 1, 1), fixtures::sphere(14, 8), fixtures::torus(14, 8),
+                              fixtures::sheet(6, 0.3), fixtures::open_box(), fixtures::book(5), fixtures::bowtie(),
+                              fixtures::flipped_box(), fixtures::degenerate_box(), fixtures::stack(),
+                              fixtures::sheet(5, 0.0, 7, 1e-7), fixtures::sliver_box(), fixtures::sphere(90, 45)};
+  for (const Mesh& m : meshes)
+    for (bool concave : {false, true}) {
+      geom::EsmOptions kept;
+      kept.keep_concave = concave;
+      const fixtures::Baked b = fixtures::bake(m, {}, kept);
+      std::vector<geom::EsmQuad> quads;
+      size_t most = 0, calls = 0;
+      geom::EsmOptions streamed = kept;
+      streamed.quads_out = [&](const geom::EsmQuad* p, size_t n) {
+        quads.insert(quads.end(), p, p + n), most = std::max(most, n), ++calls;
+      };
+      const geom::EsmQuads e =
+          geom::build_esm_quads(geom::positions_of(b.weld.positions.data(), b.weld.vertex_count()),
+                                b.weld.indices.data(), b.weld.indices.size() / 3, b.topology, b.planes, streamed);
+      const std::string what = m.name + (concave ? " concave kept" : "");
+      ASSERT_EQ(quads.size(), b.esm.quads.size()) << what;
+      EXPECT_EQ(std::memcmp(quads.data(), b.esm.quads.data(), quads.size() * sizeof(geom::EsmQuad)), 0) << what;
+      EXPECT_LE(most, 4096u + 2 * 3) << what;
+      EXPECT_TRUE(e.quads.empty()) << what;
+      EXPECT_EQ(e.planes, b.esm.planes) << what;
+      EXPECT_EQ(e.stats.quads, b.esm.stats.quads) << what;
+      EXPECT_EQ(e.stats.bytes, b.esm.stats.bytes) << what;
+      EXPECT_EQ(e.stats.emitted_edges, b.esm.stats.emitted_edges) << what;
+      if (b.esm.quads.size() > 3 * 4096) EXPECT_GE(calls, 3u) << what;
+    }
+}

@@ -69,7 +69,6 @@ void free_vector(std::vector<T>& v) {
   std::vector<T>().swap(v);
 }
 
-struct WriteFailed {};
 
 // A section that views `values` (no copy) inside the stage result `keep` holds.
 template <class T>
@@ -93,6 +92,42 @@ BakedSection record_section(SectionType type, const char* name, const std::vecto
                             std::shared_ptr<const void> keep, uint32_t item = 0) {
   return view_section(type, Format::Record, uint32_t(sizeof(Record)), name, records, std::move(keep), item);
 }
+
+struct WriteFailed {};
+
+// A section of records that a stage streams as it makes them (its options'
+// *_out): begun with the first piece, or empty at close(), which ends it and
+// returns its description (no bytes).
+class RecordStream {
+ public:
+  RecordStream(BakedFileWriter* out, SectionType type, const char* name, uint32_t stride) : out_(out) {
+    meta_.type = type, meta_.format = Format::Record, meta_.stride = stride, meta_.name = name;
+  }
+  void write(const void* records, size_t n) {
+    begin();
+    if (!out_->write(records, n * meta_.stride)) throw WriteFailed();
+    meta_.count += n;
+  }
+  BakedSection close() {
+    if (!closed_) {
+      begin();
+      if (!out_->end()) throw WriteFailed();
+      closed_ = true;
+      meta_.view_size = size_t(meta_.count * meta_.stride);
+    }
+    return meta_;
+  }
+
+ private:
+  void begin() {
+    if (begun_) return;
+    if (!out_->begin_records(meta_)) throw WriteFailed();
+    begun_ = true;
+  }
+  BakedFileWriter* out_;
+  BakedSection meta_;
+  bool begun_ = false, closed_ = false;
+};
 
 std::string esm_json(const EsmStats& s) {
   return "{\"edges\":" + json::count(s.edges) + ",\"candidate_edges\":" + json::count(s.candidate_edges) +
@@ -184,6 +219,22 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
                              : 0);
       if (!out->expect(n)) throw WriteFailed();
     }
+    // Streamed, the ESM quads and (without lights: no light volume reads the
+    // generic one) the volume's side records and caps go to the file as their
+    // stage makes them, a piece at a time: they are most of the file, and
+    // were the bake's peak.
+    const bool stream_esm = out && asked.esm, stream_volume = out && asked.volume && lights.empty();
+    RecordStream quads(out, SectionType::EsmQuads, "esm_quads", sizeof(EsmQuad));
+    RecordStream sides(out, SectionType::VolumeSides, "volume_sides", sizeof(SvSide));
+    RecordStream caps(out, SectionType::VolumeCaps, "volume_caps", sizeof(SvCap));
+    if (stream_esm) po.esm_options.quads_out = [&](const EsmQuad* p, size_t n) { quads.write(p, n); };
+    if (stream_volume) {
+      po.volume_options.sides_out = [&](const SvSide* p, size_t n) { sides.write(p, n); };
+      po.volume_options.caps_out = [&](const SvCap* p, size_t n) {
+        sides.close();
+        caps.write(p, n);
+      };
+    }
     // Sections view the buffers (no copy) inside the run `kept` holds; with
     // `out` they are written (and their buffers freed) as they are made.
     const auto kept = std::make_shared<Pipeline>();
@@ -253,7 +304,10 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
             if (out && (!asked.esm || has("esm"))) free_vector(p.planes.normals);  // only the ESM quads read them
             if (!asked.esm) break;
             if (!has("esm")) return;
-            emit(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept));
+            if (stream_esm)
+              s.push_back(quads.close());
+            else
+              emit(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept));
             emit(view_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", p.esm.planes, kept));
             js += "\"esm\":" + esm_json(p.esm.stats) + ",";
             r.esm = p.esm.stats;
@@ -265,8 +319,13 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
               if (out) free_vector(p.planes.planes), free_vector(p.planes.face_plane);  // read by the volume last
             }
             if (!asked.volume) break;
-            emit(record_section(SectionType::VolumeSides, "volume_sides", p.volume.sides, kept));
-            emit(record_section(SectionType::VolumeCaps, "volume_caps", p.volume.caps, kept));
+            if (stream_volume) {  // written as they came: the sections end here
+              s.push_back(sides.close());
+              s.push_back(caps.close());
+            } else {
+              emit(record_section(SectionType::VolumeSides, "volume_sides", p.volume.sides, kept));
+              emit(record_section(SectionType::VolumeCaps, "volume_caps", p.volume.caps, kept));
+            }
             emit(view_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", p.volume.planes, kept));
             js += "\"volume\":" + volume_json(p.volume.stats) + ",";
             r.volume = p.volume.stats;

@@ -222,6 +222,7 @@ struct BakedFileWriter::State {
   std::vector<Entry> entries;
   bool in_section = false;
   uint64_t offset = 0, size = 0, done = 0;  // the section being put
+  bool sized = true;                        // false: its size is what write() gives (begin_records)
   uint32_t crc = 0;
   std::vector<unsigned char> buffer;  // for compares and copies
   bool failed = false;
@@ -355,26 +356,48 @@ bool BakedFileWriter::begin(const BakedSection& section, uint64_t size) {
   return true;
 }
 
+bool BakedFileWriter::begin_records(const BakedSection& section) {
+  BakedSection first = section;
+  first.count = 0;
+  if (!begin(first, 0)) return false;
+  State& s = *s_;
+  s.sized = false;
+  s.size = UINT64_MAX;
+  return true;
+}
+
 bool BakedFileWriter::write(const void* data, size_t size) {
   State& s = *s_;
   if (s.failed) return false;
   if (!s.in_section || size > s.size - s.done) return s.fail("internal: more bytes than the section has");
   if (size == 0) return true;
-  const unsigned char* p = static_cast<const unsigned char*>(data);
-  s.crc = geom::crc32c(p, size, s.crc);
-  const uint64_t pos = s.offset + s.done;
-  if (s.comparing && !s.old_holds(p, pos, size) && !s.start_writing(pos)) return false;
-  if (!s.comparing && !s.start_writing(pos)) return false;
-  if (!s.comparing && !s.pwrite_all(p, size, pos)) return false;
-  s.done += size;
+  // In pieces that stay in the cache between the checksum and the write (a
+  // large section read twice from memory otherwise).
+  constexpr size_t kPiece = size_t(256) << 10;
+  for (const unsigned char* p = static_cast<const unsigned char*>(data); size > 0;) {
+    const size_t n = std::min(size, kPiece);
+    s.crc = geom::crc32c(p, n, s.crc);
+    const uint64_t pos = s.offset + s.done;
+    if (s.comparing && !s.old_holds(p, pos, n) && !s.start_writing(pos)) return false;
+    if (!s.comparing && !s.start_writing(pos)) return false;
+    if (!s.comparing && !s.pwrite_all(p, n, pos)) return false;
+    s.done += n, p += n, size -= n;
+  }
   return true;
 }
 
 bool BakedFileWriter::end() {
   State& s = *s_;
   if (s.failed) return false;
-  if (!s.in_section || s.done != s.size) return s.fail("internal: fewer bytes than the section has");
-  s.entries.back().crc = s.crc;
+  if (!s.in_section || (s.sized && s.done != s.size)) return s.fail("internal: fewer bytes than the section has");
+  Entry& e = s.entries.back();
+  if (!s.sized) {
+    if (s.done % e.stride) return s.fail("internal: section '" + e.name + "' ends inside a record");
+    e.count = s.done / e.stride;
+    e.size = s.size = s.done;
+    s.sized = true;
+  }
+  e.crc = s.crc;
   s.at = s.offset + s.size;
   s.in_section = false;
   return true;

@@ -99,6 +99,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   // Room for the most an edge can emit (a pair: two quads and a bevel plane;
   // otherwise two quads and a plane per face), so the buffers never grow
   // (a grown vector copies itself; the unused tail is never paged in).
+  constexpr size_t kPiece = 4096;  // quads per piece when streamed
   {
     // Sums over the edges, from the table's totals: every face entry, less
     // one per edge of two faces (a manifold or inconsistent edge).
@@ -110,11 +111,18 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
     }
     const size_t entries = topology.edge_faces.size();
     const size_t quads = 2 * (entries - pairs), planes = 4 * fp.plane_count() + 4 * (entries - pairs);
-    r.quads.reserve(quads);
+    r.quads.reserve(options.quads_out ? kPiece + 4 : quads);
     r.planes.reserve(planes);
   }
+  uint64_t quads_sent = 0;
+  const auto send = [&] {
+    options.quads_out(r.quads.data(), r.quads.size());
+    quads_sent += r.quads.size();
+    r.quads.clear();
+  };
   detail::LiveFaces live;
   for (const Edge& e : topology.edges) {
+    if (options.quads_out && r.quads.size() >= kPiece) send();  // streamed: a piece of whole edges
     live.gather(topology, fp, e);
     if (live.empty()) continue;
     ++st.candidate_edges;
@@ -172,7 +180,11 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
     }
     if (r.quads.size() > before) ++st.emitted_edges;
   }
-  st.quads = r.quads.size();
+  if (options.quads_out) {
+    if (!r.quads.empty()) send();
+    std::vector<EsmQuad>().swap(r.quads);
+  }
+  st.quads = quads_sent + r.quads.size();
   st.bytes = st.quads * sizeof(EsmQuad) + 16 * uint64_t(r.planes.size() / 4);
   st.naive_bytes = 160 * st.candidate_edges;
   return r;

@@ -2,13 +2,14 @@
 // stencil counts are right). Seeds: 004_3832d04cb6bd7525.txt section 4, the
 // z-fail baseline of 001_0225cc27c0669b01.txt section 5.
 //
-// One walk over the edge table: each edge's live faces are gathered once, the
-// components joined (a union-find whose roots are each component's smallest
-// face) and the side records written as if every face were double-sided, each
+// One walk over the edge table (double-sided, the default): each edge's live
+// faces are gathered once, the components joined (a union-find whose roots
+// are each component's smallest face) and the side records written, each
 // record's component id holding its face for now. Then one pass over the
 // faces numbers the components in face order (in place, in the union-find's
-// own array), one over the records turns faces into ids (dropping the second
-// copies of closed components when they are one-sided), one writes the caps.
+// own array), one over the ids turns faces into components, one writes the
+// caps. One-sided closed components need their closedness before their
+// pairs' records: a walk joining the components comes first.
 #include "geom/shadow_volume.h"
 
 #include <algorithm>
@@ -48,6 +49,12 @@ ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t trian
   st.edges = topology.edges.size();
   const uint32_t* face_plane = fp.face_plane.data();
   const bool ids = options.component_ids || options.one_sided_closed;
+  // Streamed (options.sides_out, caps_out), the records go out a piece at a
+  // time and only a piece is ever held.
+  constexpr size_t kPiece = 4096;
+  const bool stream_sides = bool(options.sides_out), stream_caps = bool(options.caps_out);
+  const bool side_ids = ids && !stream_sides, cap_ids = ids && !stream_caps;
+  uint64_t sides_sent = 0, caps_sent = 0;
 
   // The vertices in the local frame, each converted once (the records copy them).
   std::vector<float> local(3 * positions.size());
@@ -59,52 +66,94 @@ ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t trian
   }
   const float* lp = local.data();
 
-  // Union-find over the faces, then (below) each face's dense component id.
+  // Components over non-degenerate faces (a component is closed when each of
+  // its edges has exactly two such faces in opposite directions): a
+  // union-find, then in the same array each face's dense id, in face order.
   std::vector<uint32_t> component(ids ? triangle_count : 0);
   uint32_t* parent = component.data();
   for (size_t f = 0; f < component.size(); ++f) parent[f] = uint32_t(f);
-  std::vector<uint32_t> open_faces;     // a face of each edge that is not a pair: its component is open
-  std::vector<uint32_t> skipped_faces;  // one-sided: face A of each skipped coplanar pair
-  detail::LiveFaces live;               // the non-degenerate faces of one edge, as edge_faces entries
+  std::vector<uint32_t> open_faces;  // a face of each edge that is not a pair: its component is open
+  detail::LiveFaces live;            // the non-degenerate faces of one edge, as edge_faces entries
+  const auto is_pair = [&]() { return live.size() == 2 && ((live[0] ^ live[1]) & 1u); };
+  const auto join = [&]() {  // the gathered edge's faces
+    for (size_t i = 1; i < live.size(); ++i) unite(parent, live[0] >> 1, live[i] >> 1);
+    if (!is_pair()) open_faces.push_back(live[0] >> 1);
+  };
+  bool numbered = false;
+  const auto number = [&]() {  // a face's parent is never after it: its slot already holds the id
+    for (size_t f = 0; f < triangle_count; ++f) {
+      if (face_plane[f] == FacePlanes::kNone) continue;
+      const uint32_t p = parent[f];
+      if (p == f) {
+        component[f] = uint32_t(sv.component_closed.size());
+        sv.component_closed.push_back(1);
+      } else {
+        component[f] = component[p];
+      }
+    }
+    for (uint32_t f : open_faces) sv.component_closed[component[f]] = 0;
+    std::vector<uint32_t>().swap(open_faces);
+    numbered = true;
+  };
+  const auto double_sided = [&](uint32_t f) { return !options.one_sided_closed || !sv.component_closed[component[f]]; };
+  // One-sided, a pair's multiplicity depends on its component's closedness:
+  // the components first. Double-sided, they are joined in the records' walk.
+  if (options.one_sided_closed) {
+    for (const Edge& e : topology.edges) {
+      live.gather(topology, fp, e);
+      if (!live.empty()) join();
+    }
+    number();
+  }
 
   // Side records, in edge order; room for the most (a pair: two records, else
   // one per face), so the buffers never grow.
-  {
+  if (stream_sides) {
+    sv.sides.reserve(kPiece);
+  } else {
     const size_t most = topology.edge_faces.size();  // the sum of those over the edges
     sv.sides.reserve(most);
-    if (ids) sv.side_component.reserve(most);
+    if (side_ids) sv.side_component.reserve(most);
   }
+  const auto send_sides = [&] {
+    options.sides_out(sv.sides.data(), sv.sides.size());
+    sides_sent += sv.sides.size();
+    sv.sides.clear();
+  };
   // Each record written in place, field by field (one built aside and copied
-  // in stalls on its partly written bytes).
+  // in stalls on its partly written bytes). Its id: the component once
+  // numbered, else its face for now.
   const auto add_side = [&](uint32_t v0, uint32_t v1, uint32_t plane_a, uint32_t plane_b, uint32_t face) {
     SvSide& s = sv.sides.emplace_back();
     std::memcpy(s.p0, lp + 3 * size_t(v0), 12);
     std::memcpy(s.p1, lp + 3 * size_t(v1), 12);
     s.plane_a = plane_a;
     s.plane_b = plane_b;
-    if (ids) sv.side_component.push_back(face);
+    if (side_ids)
+      sv.side_component.push_back(numbered ? component[face] : face);
+    else if (stream_sides && sv.sides.size() == kPiece)
+      send_sides();
   };
   for (const Edge& e : topology.edges) {
     live.gather(topology, fp, e);
     if (live.empty()) continue;
     st.naive_sides += live.size();
-    if (ids)
-      for (size_t i = 1; i < live.size(); ++i) unite(parent, live[0] >> 1, live[i] >> 1);
-    if (live.size() == 2 && ((live[0] ^ live[1]) & 1u)) {  // a pair
+    if (ids && !numbered) join();
+    if (is_pair()) {
       const uint32_t fa = (live[0] & 1u) ? live[1] >> 1 : live[0] >> 1;  // traverses v0 -> v1
       const uint32_t fb = (live[0] & 1u) ? live[0] >> 1 : live[1] >> 1;
       const uint32_t pa = face_plane[fa], pb = face_plane[fb];
+      const bool ds = double_sided(fa);
       if (pa == pb) {
         ++st.skipped_coplanar;
-        if (options.one_sided_closed) skipped_faces.push_back(fa);
+        st.skipped_coplanar_records += ds ? 2 : 1;
         continue;
       }
       ++st.pair_edges;
       add_side(e.v0, e.v1, pa, pb, fa);
-      add_side(e.v0, e.v1, pa | SvSide::kSecond, pb, fa);  // multiplicity up to 2: the second copy
+      if (ds) add_side(e.v0, e.v1, pa | SvSide::kSecond, pb, fa);  // multiplicity up to 2: the second copy
       continue;
     }
-    if (ids) open_faces.push_back(live[0] >> 1);
     for (uint32_t ef : live) {
       const bool reversed = ef & 1u;
       const uint32_t plane = face_plane[ef >> 1];
@@ -112,49 +161,35 @@ ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t trian
       add_side(reversed ? e.v1 : e.v0, reversed ? e.v0 : e.v1, plane, plane | SvSide::kFlip, ef >> 1);
     }
   }
+  if (stream_sides) {
+    if (!sv.sides.empty()) send_sides();
+    std::vector<SvSide>().swap(sv.sides);
+  }
+  if (ids && !numbered) {
+    number();
+    for (uint32_t& id : sv.side_component) id = component[id];  // faces to components
+  }
+  st.components = sv.component_closed.size();
+  for (uint8_t c : sv.component_closed) st.closed_components += c;
 
-  // Dense component ids in face order, in place: a face's parent is never
-  // after it, so its slot already holds the id when the face is reached.
+  // Caps: every non-degenerate face.
+  if (stream_caps) {
+    sv.caps.reserve(kPiece);
+  } else {
+    const size_t caps = triangle_count - std::min<uint64_t>(fp.degenerate_faces, triangle_count);
+    sv.caps.reserve(caps);
+    if (cap_ids) sv.cap_component.reserve(caps);
+  }
+  const auto send_caps = [&] {
+    options.caps_out(sv.caps.data(), sv.caps.size());
+    caps_sent += sv.caps.size();
+    sv.caps.clear();
+  };
   for (size_t f = 0; f < triangle_count; ++f) {
     if (face_plane[f] == FacePlanes::kNone) {
       ++st.degenerate_faces;
       continue;
     }
-    if (!ids) continue;
-    const uint32_t p = parent[f];
-    if (p == f) {
-      component[f] = uint32_t(sv.component_closed.size());
-      sv.component_closed.push_back(1);
-    } else {
-      component[f] = component[p];
-    }
-  }
-  for (uint32_t f : open_faces) sv.component_closed[component[f]] = 0;
-  const auto double_sided = [&](uint32_t f) { return !options.one_sided_closed || !sv.component_closed[component[f]]; };
-  st.skipped_coplanar_records = 2 * st.skipped_coplanar;
-  for (uint32_t f : skipped_faces) st.skipped_coplanar_records -= !double_sided(f);
-  st.components = sv.component_closed.size();
-  for (uint8_t c : sv.component_closed) st.closed_components += c;
-
-  // Faces to ids; one-sided closed components keep one copy of each pair.
-  if (ids) {
-    size_t kept = 0;
-    for (size_t i = 0; i < sv.sides.size(); ++i) {
-      const uint32_t c = component[sv.side_component[i]];
-      if (options.one_sided_closed && (sv.sides[i].plane_a & SvSide::kSecond) && sv.component_closed[c]) continue;
-      if (kept != i) sv.sides[kept] = sv.sides[i];
-      sv.side_component[kept++] = c;
-    }
-    sv.sides.resize(kept);
-    sv.side_component.resize(kept);
-  }
-
-  // Caps: every non-degenerate face.
-  const size_t caps = triangle_count - st.degenerate_faces;
-  sv.caps.reserve(caps);
-  if (ids) sv.cap_component.reserve(caps);
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (face_plane[f] == FacePlanes::kNone) continue;
     SvCap& c = sv.caps.emplace_back();
     const uint32_t* v = indices + 3 * f;
     std::memcpy(c.a, lp + 3 * size_t(v[0]), 12);
@@ -163,10 +198,17 @@ ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t trian
     const bool ds = double_sided(uint32_t(f));
     c.plane = face_plane[f] | (ds ? SvCap::kDoubleSided : 0u);
     ++(ds ? st.double_sided_faces : st.one_sided_faces);
-    if (ids) sv.cap_component.push_back(component[f]);
+    if (cap_ids)
+      sv.cap_component.push_back(component[f]);
+    else if (stream_caps && sv.caps.size() == kPiece)
+      send_caps();
   }
-  st.sides = sv.sides.size();
-  st.caps = sv.caps.size();
+  if (stream_caps) {
+    if (!sv.caps.empty()) send_caps();
+    std::vector<SvCap>().swap(sv.caps);
+  }
+  st.sides = sides_sent + sv.sides.size();
+  st.caps = caps_sent + sv.caps.size();
   const uint64_t plane_bytes = 16 * uint64_t(sv.planes.size() / 4);
   st.bytes = st.sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
   st.naive_bytes = st.naive_sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;

@@ -122,6 +122,9 @@ class BakedFileWriter {
   // ... or in pieces: begin() with `size` bytes to come (the section's own
   // bytes are not read), then write() them in order, then end().
   bool begin(const BakedSection& section, uint64_t size);
+  // ... or begin_records(): a section whose size is the bytes written before
+  // end(), a whole number of `section.stride` (count and size are ignored).
+  bool begin_records(const BakedSection& section);
   bool write(const void* data, size_t size);
   bool end();
   // Writes the header and table and renames the file over the target (or

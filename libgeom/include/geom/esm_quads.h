@@ -64,6 +64,7 @@
 // extrusion vector) in float, takes 160 bytes per quad).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geom/baked_records.h"
@@ -97,6 +98,10 @@ struct EsmQuads {
 struct EsmOptions {
   bool keep_concave = false;        // also emit concave manifold edges
   double bevel_below_degrees = 90;  // dihedral angle under which an edge gets two quads
+  // Set, the quads go to it in pieces, in order, as they are made, and are not
+  // kept: the result's quads stay empty, its stats count every quad (planes are
+  // kept as ever). What it throws ends the build.
+  std::function<void(const EsmQuad* quads, size_t count)> quads_out;
 };
 
 EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t triangle_count,

@@ -120,6 +120,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "geom/baked_records.h"
@@ -188,8 +189,15 @@ struct ShadowVolumeOptions {
   // closed_components. Off (and one_sided_closed off), the components are never
   // computed: same records and caps, less time and memory; build_light_volume
   // then keeps every component double-sided (correct, larger). A bake without
-  // lights turns it off.
+  // lights has no use for them.
   bool component_ids = true;
+  // Set, the side records (then the caps) go to it in pieces, in order, as
+  // they are made, and are not kept: the result's sides and side_component
+  // (caps and cap_component) stay empty, its stats count every record. What
+  // it throws ends the build. (A stream of the volume cannot feed
+  // build_light_volume.)
+  std::function<void(const SvSide* records, size_t count)> sides_out;
+  std::function<void(const SvCap* records, size_t count)> caps_out;
 };
 
 // The generic, light-independent volume of a welded mesh.
