@@ -5,6 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "live_faces.h"
 #include "vec3.h"
@@ -31,14 +35,95 @@ inline int16_t snorm16(double v) {
 inline void encode(const double v[3], int16_t out[2]) {
   const double s = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
   double x = s > 0 ? v[0] / s : 0, y = s > 0 ? v[1] / s : 0;
-  const double z = s > 0 ? v[2] / s : 1;
+  // z = v[2] / s matters only by its sign: negative exactly when v[2] is,
+  // unless the quotient underflows to -0, which needs s >= 2 (|v[2]| / s
+  // <= 2^-1075); the division is left for that case (never a unit vector's).
+  // s NaN (or 0): z = 1, no fold, as both comparisons with s fail.
+  const bool fold = v[2] < 0 && (s < 2 || v[2] / s < 0);
   const double fx = (1 - std::fabs(y)) * (x >= 0 ? 1 : -1), fy = (1 - std::fabs(x)) * (y >= 0 ? 1 : -1);
-  const bool fold = z < 0;
   x = fold ? fx : x;
   y = fold ? fy : y;
   out[0] = snorm16(x);
   out[1] = snorm16(y);
 }
+
+// encode(unit(a)), the extrusion vector of a quad.
+inline void encode_unit(Vec3 a, int16_t out[2]) {
+  const Vec3 u = unit(a);
+  const double v[3] = {u.x, u.y, u.z};
+  encode(v, out);
+}
+
+// The extrusion vectors of the quads last emitted, before unit() and
+// encode(): they wait here and are finished kSize at a time, so one quad's
+// square root and divisions overlap the next quads' instead of closing each
+// edge's chain of loads (each quad is still the same operations, in the same
+// order).
+class QBatch {
+ public:
+  static constexpr int kSize = 64;
+  void push(std::vector<EsmQuad>& quads, Vec3 a) {
+    x_[n_] = a.x, y_[n_] = a.y, z_[n_] = a.z;
+    if (++n_ == kSize) flush(quads);
+  }
+  // Finishes the waiting vectors: theirs are the last n_ quads.
+  void flush(std::vector<EsmQuad>& quads) {
+    EsmQuad* q = quads.data() + (quads.size() - size_t(n_));
+    int i = 0;
+#if defined(__SSE2__)
+    for (; i + 2 <= n_; i += 2)
+      if (!encode_unit2(i, q[i].q, q[i + 1].q)) {
+        encode_unit(Vec3{x_[i], y_[i], z_[i]}, q[i].q);
+        encode_unit(Vec3{x_[i + 1], y_[i + 1], z_[i + 1]}, q[i + 1].q);
+      }
+#endif
+    for (; i < n_; ++i) encode_unit(Vec3{x_[i], y_[i], z_[i]}, q[i].q);
+    n_ = 0;
+  }
+
+ private:
+#if defined(__SSE2__)
+  // encode_unit() of vectors i and i + 1, two lanes at a time: each lane the
+  // same IEEE operations in the same order (so the same bits); false, and
+  // nothing written, where a lane's s is not in (0, 2) (see encode()).
+  bool encode_unit2(int i, int16_t out0[2], int16_t out1[2]) const {
+    const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), minus_one = _mm_set1_pd(-1.0);
+    const __m128d sign = _mm_set1_pd(-0.0);
+    const auto abs = [&](__m128d v) { return _mm_andnot_pd(sign, v); };
+    const auto select = [](__m128d m, __m128d a, __m128d b) { return _mm_or_pd(_mm_and_pd(m, a), _mm_andnot_pd(m, b)); };
+    const __m128d ax = _mm_loadu_pd(x_ + i), ay = _mm_loadu_pd(y_ + i), az = _mm_loadu_pd(z_ + i);
+    // unit(): a * (1 / |a|), or +z.
+    const __m128d l = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(ax, ax), _mm_mul_pd(ay, ay)), _mm_mul_pd(az, az)));
+    const __m128d ok = _mm_cmpgt_pd(l, zero), inv = _mm_div_pd(one, l);
+    const __m128d ux = _mm_and_pd(ok, _mm_mul_pd(ax, inv)), uy = _mm_and_pd(ok, _mm_mul_pd(ay, inv));
+    const __m128d uz = select(ok, _mm_mul_pd(az, inv), one);
+    // encode()
+    const __m128d s = _mm_add_pd(_mm_add_pd(abs(ux), abs(uy)), abs(uz));
+    if (_mm_movemask_pd(_mm_and_pd(_mm_cmpgt_pd(s, zero), _mm_cmplt_pd(s, _mm_set1_pd(2.0)))) != 3) return false;
+    const __m128d x = _mm_div_pd(ux, s), y = _mm_div_pd(uy, s);
+    const __m128d fx = _mm_mul_pd(_mm_sub_pd(one, abs(y)), select(_mm_cmpge_pd(x, zero), one, minus_one));
+    const __m128d fy = _mm_mul_pd(_mm_sub_pd(one, abs(x)), select(_mm_cmpge_pd(y, zero), one, minus_one));
+    const __m128d fold = _mm_cmplt_pd(uz, zero);
+    const __m128i tx = snorm16x2(select(fold, fx, x)), ty = snorm16x2(select(fold, fy, y));
+    const __m128i xy = _mm_packs_epi32(_mm_unpacklo_epi32(tx, ty), _mm_setzero_si128());  // x0 y0 x1 y1
+    const int32_t w0 = _mm_cvtsi128_si32(xy), w1 = _mm_cvtsi128_si32(_mm_srli_si128(xy, 4));
+    std::memcpy(out0, &w0, 4);
+    std::memcpy(out1, &w1, 4);
+    return true;
+  }
+  // snorm16() of two lanes, as two int32 (lanes 0 and 1).
+  static __m128i snorm16x2(__m128d v) {
+    const __m128d x = _mm_mul_pd(_mm_max_pd(_mm_min_pd(v, _mm_set1_pd(1.0)), _mm_set1_pd(-1.0)), _mm_set1_pd(32767.0));
+    const __m128i t = _mm_cvttpd_epi32(x);
+    const __m128d r = _mm_sub_pd(x, _mm_cvtepi32_pd(t));
+    const __m128i up = _mm_shuffle_epi32(_mm_castpd_si128(_mm_cmpge_pd(r, _mm_set1_pd(0.5))), _MM_SHUFFLE(2, 0, 2, 0));
+    const __m128i dn = _mm_shuffle_epi32(_mm_castpd_si128(_mm_cmple_pd(r, _mm_set1_pd(-0.5))), _MM_SHUFFLE(2, 0, 2, 0));
+    return _mm_add_epi32(_mm_sub_epi32(t, up), dn);  // a true mask is -1
+  }
+#endif
+  double x_[kSize], y_[kSize], z_[kSize];
+  int n_ = 0;
+};
 
 }  // namespace
 
@@ -85,14 +170,15 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
     return Vec3{double(p.x) - fp.origin[0], double(p.y) - fp.origin[1], double(p.z) - fp.origin[2]};
   };
   auto normal = [&](uint32_t f) { return Vec3{fp.normals[3 * f], fp.normals[3 * f + 1], fp.normals[3 * f + 2]}; };
+  QBatch batch;
+  // q: the extrusion vector before unit() (finished in the batch).
   auto emit = [&](Vec3 p0, Vec3 p1, uint32_t pa, uint32_t pb, Vec3 q) {
     EsmQuad& e = r.quads.emplace_back();  // in place (one built aside and copied in stalls on its bytes)
     e.p0[0] = float(p0.x), e.p0[1] = float(p0.y), e.p0[2] = float(p0.z);
     e.p1[0] = float(p1.x), e.p1[1] = float(p1.y), e.p1[2] = float(p1.z);
     e.plane_a = pa;
     e.plane_b = pb;
-    const double qd[3] = {q.x, q.y, q.z};
-    encode(qd, e.q);
+    batch.push(r.quads, q);
   };
   const double bevel_dot = -std::cos(options.bevel_below_degrees * M_PI / 180.0);
 
@@ -116,6 +202,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
   }
   uint64_t quads_sent = 0;
   const auto send = [&] {
+    batch.flush(r.quads);  // the piece's last extrusion vectors
     options.quads_out(r.quads.data(), r.quads.size());
     quads_sent += r.quads.size();
     r.quads.clear();
@@ -141,7 +228,10 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
       const Vec3 p0 = (ea & 1u) ? v1 : v0, p1 = (ea & 1u) ? v0 : v1;  // A traverses p0 -> p1
       const Vec3 na = normal(fa), nb = normal(fb) * (inconsistent ? -1.0 : 1.0);
       const uint32_t* w = indices + 3 * size_t(fb);
-      const uint32_t far = w[0] != e.v0 && w[0] != e.v1 ? w[0] : w[1] != e.v0 && w[1] != e.v1 ? w[1] : w[2];
+      // The first of B's vertices off the edge, selected by masks: which it
+      // is follows no pattern a branch predictor could learn.
+      const uint32_t m0 = 0u - uint32_t(w[0] != e.v0 && w[0] != e.v1), m1 = 0u - uint32_t(w[1] != e.v0 && w[1] != e.v1);
+      const uint32_t far = (w[0] & m0) | (~m0 & ((w[1] & m1) | (~m1 & w[2])));
       const bool concave = dot(na, pos(far) - p0) > 0;
       if (concave && !options.keep_concave) {
         ++st.skipped_concave;
@@ -149,7 +239,7 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
       }
       const uint32_t pa = plane_of(fa), pb = plane_of(fb) | (inconsistent ? EsmQuad::kFlip : 0u);
       if (dot(na, nb) >= bevel_dot) {
-        emit(p0, p1, pa, pb, unit(na + nb));
+        emit(p0, p1, pa, pb, na + nb);
       } else {
         // Bevel plane: the normalized sum of the two planes, through the edge.
         Vec3 s = na + nb;
@@ -157,8 +247,8 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         const Vec3 mid = (p0 + p1) * 0.5;
         const uint32_t pbev = uint32_t(r.planes.size() / 4);
         push_plane(float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid)));
-        emit(p0, p1, pa, pbev, unit(na + nbev));
-        emit(p0, p1, pbev, pb, unit(nbev + nb));
+        emit(p0, p1, pa, pbev, na + nbev);
+        emit(p0, p1, pbev, pb, nbev + nb);
         ++st.bevel_edges;
       }
     } else {
@@ -173,13 +263,14 @@ EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t
         const uint32_t pa = plane_of(f), pbev = uint32_t(r.planes.size() / 4);
         const Vec3 mid = (p0 + p1) * 0.5;
         push_plane(float(u.x), float(u.y), float(u.z), float(-dot(u, mid)));
-        emit(p0, p1, pa, pbev, unit(n + u));
-        emit(p0, p1, pbev, pa | EsmQuad::kFlip, unit(u - n));
+        emit(p0, p1, pa, pbev, n + u);
+        emit(p0, p1, pbev, pa | EsmQuad::kFlip, u - n);
         ++st.bevel_edges;
       }
     }
     if (r.quads.size() > before) ++st.emitted_edges;
   }
+  batch.flush(r.quads);
   if (options.quads_out) {
     if (!r.quads.empty()) send();
     std::vector<EsmQuad>().swap(r.quads);

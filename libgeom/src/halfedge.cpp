@@ -74,10 +74,8 @@ namespace {
 inline int corner_of(const uint32_t* f, uint32_t v) { return f[0] == v ? 0 : f[1] == v ? 1 : 2; }
 
 // Walks the fan of each vertex through its manifold edges, corner to corner:
-// each corner is visited once. False as soon as a vertex has a second fan.
+// each corner is visited once. False where a vertex has a second fan.
 bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_count, const Topology& t) {
-  std::vector<uint8_t> seen(triangle_count, 0);  // bit k: corner k visited
-  std::vector<uint8_t> fans(vertex_count, 0);
   uint64_t steps = 0;
   struct Count {  // added on every way out
     uint64_t& steps;
@@ -90,34 +88,54 @@ bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_c
     return a == f ? b : a;
   };
   if (t.face_twins.size() == 3 * triangle_count && t.stats.inconsistent_edges == 0) {
-    // The same walk on the twins: from corner k of a face, out through slot
-    // k (the edge leaving the corner's vertex) to the twin slot j, which
-    // enters it: the vertex is the other face's corner j + 1, and the walk
-    // goes on out through that corner's slot; the other way, in through slot
-    // k + 2 to a twin j that leaves the vertex: corner j, on through j + 2.
-    for (size_t f0 = 0; f0 < triangle_count; ++f0) {
-      if (t.face_flags[f0] & kFaceCollapsed) continue;
-      for (int k0 = 0; k0 < 3; ++k0) {
-        if (seen[f0] >> k0 & 1) continue;
-        if (fans[indices[3 * f0 + k0]]++) return false;
-        seen[f0] |= uint8_t(1 << k0);
-        for (int way = 0; way < 2; ++way) {
-          uint32_t s = uint32_t(3 * f0) + uint32_t(way ? (k0 + 2) % 3 : k0);
-          for (;;) {
-            const uint32_t tw = t.face_twins[s];
-            if (tw == Topology::kNone) break;
-            const uint32_t g = tw / 3, j = tw - 3 * g;
-            const uint32_t k = way ? j : (j == 2 ? 0 : j + 1);
-            if (seen[g] >> k & 1) break;  // back at the start: a closed fan
-            seen[g] |= uint8_t(1 << k);
-            ++steps;
-            s = 3 * g + (way ? (k == 0 ? 2 : k - 1) : k);
-          }
+    // On the twins, one walk per vertex, forward only: a corner is named by
+    // the slot of the edge leaving its vertex; from slot s out to its twin
+    // 3g + j, which enters the vertex, so the vertex is g's corner j + 1 and
+    // the walk goes on out through that slot. An open fan starts at the one
+    // corner whose entering edge (slot k + 2) has no twin (its head) and ends
+    // at a boundary; a closed one comes back to where it started. Each vertex
+    // walks from its head if it has one (a second head is a second fan), else
+    // from any corner; every vertex is a single fan exactly when the walks
+    // cover every corner.
+    constexpr uint32_t kNone = Topology::kNone;
+    std::vector<uint32_t> start(vertex_count, kNone);
+    std::vector<uint8_t> headed(vertex_count, 0);
+    uint64_t corners = 0;
+    for (size_t f = 0; f < triangle_count; ++f) {
+      if (t.face_flags[f] & kFaceCollapsed) continue;
+      corners += 3;
+      const uint32_t* tw = t.face_twins.data() + 3 * f;
+      const uint32_t* v = indices + 3 * f;
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t c = v[k], slot = uint32_t(3 * f) + k;
+        if (tw[k == 0 ? 2 : k - 1] == kNone) {
+          if (headed[c]) return false;
+          headed[c] = 1;
+          start[c] = slot;
+        } else if (start[c] == kNone) {
+          start[c] = slot;
         }
       }
     }
-    return true;
+    uint64_t covered = 0;
+    for (size_t v = 0; v < vertex_count; ++v) {
+      const uint32_t s0 = start[v];
+      if (s0 == kNone) continue;
+      uint64_t n = 1;
+      for (uint32_t s = s0;;) {
+        const uint32_t tw = t.face_twins[s];
+        if (tw == kNone) break;
+        s = tw % 3 == 2 ? tw - 2 : tw + 1;
+        if (s == s0) break;
+        ++n;
+      }
+      covered += n;
+    }
+    steps += covered;
+    return covered == corners;
   }
+  std::vector<uint8_t> seen(triangle_count, 0);  // bit k: corner k visited
+  std::vector<uint8_t> fans(vertex_count, 0);
   for (size_t f0 = 0; f0 < triangle_count; ++f0) {
     if (t.face_flags[f0] & kFaceCollapsed) continue;
     for (int k0 = 0; k0 < 3; ++k0) {
@@ -296,6 +314,7 @@ HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indi
   HalfedgeSummary s;
   s.skipped_faces = t.stats.collapsed_triangles;
   s.added_faces = triangle_count - s.skipped_faces;
+  if (t.stats.boundary_edges == 0) return s;  // no hole to walk
   // Each boundary edge as the half-edge its face does not use; the one leaving
   // a vertex is unique (one fan per vertex), so following them walks each hole.
   std::vector<uint32_t> leaving(positions.size(), Topology::kNone);

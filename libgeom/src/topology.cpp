@@ -5,12 +5,22 @@
 // out ordered by (v0, v1) and each edge's faces in triangle order: the result
 // is deterministic and independent of any hash. Nothing is dropped: an edge
 // keeps every face that uses it, however many.
+//
+// A half-edge is one 8-byte key, (larger vertex << 32) | slot, slot = 3 * face
+// + k: sorting the keys sorts by (v1, face), and the rest (the direction, the
+// face's third vertex) is read back from the face's indices. Each edge is
+// classified as it is made, from the faces' cross products (computed once, in
+// the first pass, not normalized): the coplanar test compares dot(n0, n1)^2
+// against cos^2 |n0|^2 |n1|^2 and the side test takes the sign of the
+// unnormalized dot; where either is within a margin far wider than both
+// roundings, or a magnitude is out of the safe range, the normalized formulas
+// decide, so every shape is the one they give. Components: a union-find over
+// the edges as they are made, roots the least vertex.
 #include "geom/topology.h"
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <numeric>
 
 #include "vec3.h"
 #include "work_count.h"
@@ -18,18 +28,10 @@
 namespace geom {
 namespace {
 
-struct HalfEdge {
-  uint32_t other;  // the larger vertex
-  uint32_t face;
-  uint32_t third;  // the face's vertex off the edge
-  uint8_t k;       // which edge of the face: (i_k, i_{k+1})
-  uint8_t reversed;
-};
-
 using vec3::Vec3;
 inline Vec3 sub(const Float3& a, const Float3& b) { return vec3::of(a) - vec3::of(b); }
 
-uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
+uint32_t find_root(uint32_t* parent, uint32_t v) {
   while (parent[v] != v) {
     parent[v] = parent[parent[v]];
     v = parent[v];
@@ -37,47 +39,121 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
   return v;
 }
 
+// A face's cross product (the normal before it is normalized) and its squared length.
+struct FaceNormal {
+  Vec3 n;
+  double nn;
+};
+
+// The normalized formulas: normal / |normal|, the cosine clamped.
+inline Vec3 unit(const FaceNormal& f) {
+  const double len = std::sqrt(f.nn);
+  return {f.n.x / len, f.n.y / len, f.n.z / len};
+}
+
 }  // namespace
 
 Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                         const TopologyOptions& options) {
+  constexpr uint32_t kNone = Topology::kNone;
   Topology t;
   TopologyStats& s = t.stats;
   const size_t vn = positions.size();
   s.triangles = triangle_count;
   t.face_flags.assign(triangle_count, 0);
-  t.face_edges.assign(triangle_count * 3, Topology::kNone);
-  t.face_twins.assign(triangle_count * 3, Topology::kNone);
-  t.face_component.assign(triangle_count, Topology::kNone);
+  t.face_edges.assign(triangle_count * 3, kNone);
+  t.face_twins.assign(triangle_count * 3, kNone);
+  t.face_component.resize(triangle_count);
 
-  // Collapsed faces, and the half-edge count per smaller vertex.
-  std::vector<uint32_t> start(vn + 1, 0);
+  // Collapsed and zero-area faces, the cross products, and the half-edge
+  // count per smaller vertex (at lo + 2: after the scatter below, bucket v
+  // is [start[v], start[v + 1])).
+  std::vector<uint32_t> start(vn + 2, 0);
+  std::unique_ptr<FaceNormal[]> normal(new FaceNormal[triangle_count]);  // read only where written
   for (size_t f = 0; f < triangle_count; ++f) {
     const uint32_t* v = indices + 3 * f;
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
-      t.face_flags[f] |= kFaceCollapsed;
+      t.face_flags[f] = kFaceCollapsed;
       ++s.collapsed_triangles;
       continue;
     }
-    for (int k = 0; k < 3; ++k) ++start[std::min(v[k], v[(k + 1) % 3]) + 1];
-  }
-  for (size_t i = 0; i < vn; ++i) start[i + 1] += start[i];
-  // Every entry is written below: storage without the zero fill.
-  const size_t half_count = start[vn];
-  std::unique_ptr<HalfEdge[]> half(new HalfEdge[half_count]);
-  {
-    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-    for (size_t f = 0; f < triangle_count; ++f) {
-      if (t.face_flags[f] & kFaceCollapsed) continue;
-      const uint32_t* v = indices + 3 * f;
-      for (int k = 0; k < 3; ++k) {
-        uint32_t a = v[k], b = v[(k + 1) % 3];
-        uint32_t lo = std::min(a, b), hi = std::max(a, b);
-        HalfEdge& h = half[fill[lo]++];  // field by field, in place
-        h.other = hi, h.face = uint32_t(f), h.third = v[(k + 2) % 3], h.k = uint8_t(k), h.reversed = uint8_t(a > b);
-      }
+    ++start[std::min(v[0], v[1]) + 2];
+    ++start[std::min(v[1], v[2]) + 2];
+    ++start[std::min(v[2], v[0]) + 2];
+    const Vec3 n = vec3::cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
+    const double nn = vec3::dot(n, n);
+    normal[f] = {n, nn};
+    if (!(nn > 0.0)) {  // the length sqrt(nn) is not > 0
+      t.face_flags[f] = kFaceZeroArea;
+      ++s.zero_area_triangles;
     }
   }
+  for (size_t i = 2; i <= vn + 1; ++i) start[i] += start[i - 1];
+  const size_t half_count = start[vn + 1];
+  // Every key is written below: storage without the zero fill.
+  std::unique_ptr<uint64_t[]> keys(new uint64_t[half_count]);
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (t.face_flags[f] & kFaceCollapsed) continue;
+    const uint32_t* v = indices + 3 * f;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = v[k], b = v[k == 2 ? 0 : k + 1];
+      const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+      keys[start[lo + 1]++] = uint64_t(hi) << 32 | uint32_t(3 * f + k);
+    }
+  }
+
+  const double coplanar_cos = std::cos(options.coplanar_degrees * M_PI / 180.0);
+  const double coplanar_cos2 = coplanar_cos * coplanar_cos;
+  // The unnormalized tests hold where cos is well above 0 and the magnitudes
+  // are far from overflow and underflow; each rounds to within ~1e-15 of the
+  // exact value, as do the normalized formulas, and a margin of 1e-12 sends
+  // anything closer to the threshold to the normalized formulas.
+  const bool fast_tests = !options.dihedral_angles && coplanar_cos > 1e-3;
+  constexpr double kMargin = 1e-12, kTiny = 1e-280, kHuge = 1e280;
+  // The shape of a manifold edge (v0, v1) between faces f0 < f1, `far` f1's
+  // vertex off it; None when either face is zero-area (its nn is not > 0).
+  // The fast tests decide without a branch on the answer (coplanar, convex
+  // and concave come in no order a predictor learns).
+  uint64_t shape_count[4] = {0, 0, 0, 0};  // by EdgeShape
+  auto classify = [&](Edge& edge, uint32_t f0, uint32_t f1, uint32_t far) {
+    const FaceNormal& a = normal[f0];
+    const FaceNormal& b = normal[f1];
+    if (!(a.nn > 0.0) || !(b.nn > 0.0)) return;
+    const Vec3 d = sub(positions[far], positions[edge.v0]);
+    if (fast_tests) {
+      const double p = a.nn * b.nn;
+      const double dn = vec3::dot(a.n, b.n);
+      const double g = dn * std::fabs(dn) - coplanar_cos2 * p;  // sign of cos - coplanar_cos
+      const double side = vec3::dot(a.n, d);
+      const double bound = std::fabs(a.n.x * d.x) + std::fabs(a.n.y * d.y) + std::fabs(a.n.z * d.z);
+      const bool coplanar = g > kMargin * p;
+      const bool decided = (p > kTiny) & (p < kHuge) &
+                           (coplanar | ((g < -kMargin * p) & (bound > kTiny) & (std::fabs(side) > kMargin * bound)));
+      if (decided) {
+        // Coplanar (1), else convex (2) behind f0's plane, else concave (3); in arithmetic, not branches.
+        const int convex_or_concave = int(EdgeShape::Concave) - int(side < 0.0);
+        const int shape = convex_or_concave - int(coplanar) * (convex_or_concave - int(EdgeShape::Coplanar));
+        edge.shape = EdgeShape(shape);
+        ++shape_count[shape];
+        return;
+      }
+    }
+    const Vec3 n0 = unit(a), n1 = unit(b);
+    const double c = std::max(-1.0, std::min(1.0, vec3::dot(n0, n1)));
+    // The angle between the normals, only where asked for.
+    const double theta = options.dihedral_angles ? std::acos(c) * 180.0 / M_PI : 0.0;
+    if (c >= coplanar_cos) {
+      edge.shape = EdgeShape::Coplanar;
+      edge.dihedral_degrees = options.dihedral_angles ? 180.0f : 0.0f;
+    } else if (vec3::dot(n0, d) < 0.0) {  // the far vertex of f1, against f0's plane: behind = convex
+      edge.shape = EdgeShape::Convex;
+      edge.dihedral_degrees = options.dihedral_angles ? float(180.0 - theta) : 0.0f;
+    } else {
+      edge.shape = EdgeShape::Concave;
+      edge.dihedral_degrees = options.dihedral_angles ? float(180.0 + theta) : 0.0f;
+    }
+    ++shape_count[int(edge.shape)];
+  };
 
   // Group each bucket into edges. Duplicate faces on the way: a face with the
   // same vertex set as an earlier one shares each of its edges with it, and
@@ -85,158 +161,132 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   // order) a face whose first edge this is is a duplicate when an earlier face
   // of the edge had its third vertex (`seen_at`: the last edge that saw a
   // vertex as a third vertex). Linear however many faces share the edge.
+  // Components on the way: parent[v] is kNone until v is on an edge, then
+  // at most v (a root is its set's least vertex).
   t.edges.reserve(half_count / 2 + 16);
-  t.edge_faces.reserve(half_count);
-  std::vector<uint32_t> seen_at(vn, Topology::kNone);
+  t.edge_faces.resize(half_count);  // in key order: a half-edge's entry sits where its key does
+  uint32_t* const edge_faces = t.edge_faces.data();
+  std::vector<uint32_t> seen_at(vn, kNone);
+  std::vector<uint32_t> parent(vn, kNone);
+  std::vector<uint8_t> open(vn, 0);  // v0 of a boundary or non-manifold edge
   for (size_t v0 = 0; v0 < vn; ++v0) {
-    HalfEdge* b = half.get() + start[v0];
-    HalfEdge* e = half.get() + start[v0 + 1];
+    uint64_t* b = keys.get() + start[v0];
+    uint64_t* e = keys.get() + start[v0 + 1];
     if (b == e) continue;
     uint64_t compared = 0;
     if (e - b <= 16) {
-      // The bucket was filled in triangle order, so a stable sort by the
-      // larger vertex alone gives the (other, face) order: insertion sort
-      // (the usual bucket holds about six).
-      for (HalfEdge* i = b + 1; i < e; ++i) {
-        const HalfEdge x = *i;
-        HalfEdge* j = i;
-        for (; j > b && (++compared, j[-1].other > x.other); --j) *j = j[-1];
+      // Keys are unique (a face meets (v0, v1) once): insertion sort (the
+      // usual bucket holds about six).
+      for (uint64_t* i = b + 1; i < e; ++i) {
+        const uint64_t x = *i;
+        uint64_t* j = i;
+        for (; j > b && (++compared, j[-1] > x); --j) *j = j[-1];
         *j = x;
       }
     } else {
-      std::sort(b, e, [&compared](const HalfEdge& x, const HalfEdge& y) {
+      std::sort(b, e, [&compared](uint64_t x, uint64_t y) {
         ++compared;
-        return x.other != y.other ? x.other < y.other : x.face < y.face;  // a face meets (v0, other) once
+        return x < y;
       });
     }
     detail::count_work(compared + uint64_t(e - b));
-    for (HalfEdge* run = b; run != e;) {
-      HalfEdge* end = run;
-      while (end != e && end->other == run->other) ++end;
+    if (parent[v0] == kNone) parent[v0] = uint32_t(v0);
+    uint32_t r0 = find_root(parent.data(), uint32_t(v0));
+    for (uint64_t* run = b; run != e;) {
+      const uint32_t v1 = uint32_t(*run >> 32);
+      uint64_t* end = run + 1;
+      while (end != e && uint32_t(*end >> 32) == v1) ++end;
       // Written in place, field by field (a whole Edge built aside and
       // copied in stalls on its partly written bytes).
       const uint32_t id = uint32_t(t.edges.size());
       const uint32_t face_count = uint32_t(end - run);
       Edge& edge = t.edges.emplace_back();
       edge.v0 = uint32_t(v0);
-      edge.v1 = run->other;
-      edge.first = uint32_t(t.edge_faces.size());
+      edge.v1 = v1;
+      edge.first = uint32_t(run - keys.get());
       edge.face_count = face_count;
-      edge.kind = face_count == 1                      ? EdgeKind::Boundary
-                  : face_count >= 3                    ? EdgeKind::NonManifold
-                  : run[0].reversed != run[1].reversed ? EdgeKind::Manifold
-                                                       : EdgeKind::Inconsistent;
       edge.shape = EdgeShape::None;
       edge.dihedral_degrees = 0.0f;
-      if (face_count == 2) {
-        const uint32_t s0 = 3 * run[0].face + run[0].k, s1 = 3 * run[1].face + run[1].k;
-        t.face_twins[s0] = s1;
-        t.face_twins[s1] = s0;
+      if (parent[v1] == kNone) {
+        parent[v1] = r0;
+      } else {
+        const uint32_t r1 = find_root(parent.data(), v1);
+        if (r1 < r0) parent[r0] = r1, r0 = r1;
+        else if (r1 > r0) parent[r1] = r0;
       }
-      for (HalfEdge* h = run; h != end; ++h) {
-        t.edge_faces.push_back(h->face << 1 | h->reversed);
-        t.face_edges[3 * size_t(h->face) + h->k] = id;
-        if (face_count < 2) continue;
-        const uint32_t third = h->third;
-        if (h->k == 0 && seen_at[third] == id) {
-          t.face_flags[h->face] |= kFaceDuplicate;
+      if (face_count == 1) {
+        const uint32_t sl = uint32_t(*run);
+        edge.kind = EdgeKind::Boundary;
+        ++s.boundary_edges;
+        open[v0] = 1;
+        edge_faces[edge.first] = (sl / 3) << 1 | uint32_t(indices[sl] != v0);
+        t.face_edges[sl] = id;
+        run = end;
+        continue;
+      }
+      if (face_count >= 3) {
+        edge.kind = EdgeKind::NonManifold;
+        ++s.non_manifold_edges;
+        open[v0] = 1;
+        s.max_edge_faces = std::max(s.max_edge_faces, face_count);
+      }
+      for (uint64_t* h = run; h != end; ++h) {
+        const uint32_t sl = uint32_t(*h), f = sl / 3, k = sl - 3 * f;
+        edge_faces[h - keys.get()] = f << 1 | uint32_t(indices[sl] != v0);
+        t.face_edges[sl] = id;
+        const uint32_t third = indices[sl + 2 - 3 * uint32_t(k != 0)];  // the face's corner k + 2
+        if (k == 0 && seen_at[third] == id) {
+          t.face_flags[f] |= kFaceDuplicate;
           ++s.duplicate_triangles;
         }
         seen_at[third] = id;
       }
+      if (face_count == 2) {
+        const uint32_t s0 = uint32_t(run[0]), s1 = uint32_t(run[1]);
+        t.face_twins[s0] = s1;
+        t.face_twins[s1] = s0;
+        const uint32_t* pair = edge_faces + edge.first;
+        if ((pair[0] ^ pair[1]) & 1) {
+          edge.kind = EdgeKind::Manifold;
+          ++s.manifold_edges;
+          const uint32_t f1 = pair[1] >> 1;
+          classify(edge, pair[0] >> 1, f1, indices[s1 + 2 - 3 * uint32_t(s1 != 3 * f1)]);
+        } else {
+          edge.kind = EdgeKind::Inconsistent;
+          ++s.inconsistent_edges;
+        }
+      }
       run = end;
     }
   }
-  half.reset();
+  keys.reset();
+  normal.reset();
+  s.coplanar_edges = shape_count[int(EdgeShape::Coplanar)];
+  s.convex_edges = shape_count[int(EdgeShape::Convex)];
+  s.concave_edges = shape_count[int(EdgeShape::Concave)];
+  if (s.manifold_edges + s.inconsistent_edges) s.max_edge_faces = std::max(s.max_edge_faces, 2u);
+  if (s.boundary_edges) s.max_edge_faces = std::max(s.max_edge_faces, 1u);
 
-  // Face normals (double precision from the float input); zero-area faces.
-  std::vector<Vec3> normal(triangle_count, Vec3{0, 0, 0});
+  // Components: parent[v] <= v, so one pass in vertex order takes each used
+  // vertex to its root; labels in the order of the first face of each.
+  for (size_t v = 0; v < vn; ++v)
+    if (parent[v] != kNone) parent[v] = parent[parent[v]], ++s.vertices;
+  std::vector<uint32_t>& label = seen_at;
+  std::fill(label.begin(), label.end(), kNone);
   for (size_t f = 0; f < triangle_count; ++f) {
-    if (t.face_flags[f] & kFaceCollapsed) continue;
-    const uint32_t* v = indices + 3 * f;
-    Vec3 n = vec3::cross(sub(positions[v[1]], positions[v[0]]), sub(positions[v[2]], positions[v[0]]));
-    double len = std::sqrt(vec3::dot(n, n));
-    if (!(len > 0.0)) {
-      t.face_flags[f] |= kFaceZeroArea;
-      ++s.zero_area_triangles;
+    if (t.face_flags[f] & kFaceCollapsed) {
+      t.face_component[f] = kNone;
       continue;
     }
-    normal[f] = {n.x / len, n.y / len, n.z / len};
-  }
-
-  // Classify edges; dihedral angles of manifold edges.
-  const double coplanar_cos = std::cos(options.coplanar_degrees * M_PI / 180.0);
-  for (Edge& e : t.edges) {
-    switch (e.kind) {
-      case EdgeKind::Boundary:
-        ++s.boundary_edges;
-        break;
-      case EdgeKind::Manifold:
-        ++s.manifold_edges;
-        break;
-      case EdgeKind::Inconsistent:
-        ++s.inconsistent_edges;
-        break;
-      case EdgeKind::NonManifold:
-        ++s.non_manifold_edges;
-        break;
-    }
-    s.max_edge_faces = std::max(s.max_edge_faces, e.face_count);
-    if (e.kind != EdgeKind::Manifold) continue;
-    const uint32_t f0 = t.edge_faces[e.first] >> 1, f1 = t.edge_faces[e.first + 1] >> 1;
-    if ((t.face_flags[f0] | t.face_flags[f1]) & kFaceZeroArea) continue;
-    const Vec3 n0 = normal[f0], n1 = normal[f1];
-    const double c = std::max(-1.0, std::min(1.0, vec3::dot(n0, n1)));
-    // The angle between the normals, only where asked for.
-    const double theta = options.dihedral_angles ? std::acos(c) * 180.0 / M_PI : 0.0;
-    if (c >= coplanar_cos) {
-      e.shape = EdgeShape::Coplanar;
-      e.dihedral_degrees = options.dihedral_angles ? 180.0f : 0.0f;
-      ++s.coplanar_edges;
-      continue;
-    }
-    // The far vertex of f1, against f0's plane: behind = convex.
-    const uint32_t* w = indices + 3 * size_t(f1);
-    uint32_t far = w[0] != e.v0 && w[0] != e.v1 ? w[0] : w[1] != e.v0 && w[1] != e.v1 ? w[1] : w[2];
-    const double side = vec3::dot(n0, sub(positions[far], positions[e.v0]));
-    if (side < 0.0) {
-      e.shape = EdgeShape::Convex;
-      e.dihedral_degrees = options.dihedral_angles ? float(180.0 - theta) : 0.0f;
-      ++s.convex_edges;
-    } else {
-      e.shape = EdgeShape::Concave;
-      e.dihedral_degrees = options.dihedral_angles ? float(180.0 + theta) : 0.0f;
-      ++s.concave_edges;
-    }
-  }
-
-  // Used vertices and components (union-find over shared vertices).
-  std::vector<uint32_t> parent(vn);
-  std::iota(parent.begin(), parent.end(), 0u);
-  std::vector<uint8_t> used(vn, 0);
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (t.face_flags[f] & kFaceCollapsed) continue;
-    const uint32_t* v = indices + 3 * f;
-    used[v[0]] = used[v[1]] = used[v[2]] = 1;
-    uint32_t r0 = find_root(parent, v[0]);  // a set's root is its least vertex
-    for (int k = 1; k < 3; ++k) {
-      const uint32_t r1 = find_root(parent, v[k]);
-      if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1), r0 = std::min(r0, r1);
-    }
-  }
-  for (size_t i = 0; i < vn; ++i) s.vertices += used[i];
-  std::vector<uint32_t> label(vn, Topology::kNone);
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (t.face_flags[f] & kFaceCollapsed) continue;
-    uint32_t r = find_root(parent, indices[3 * f]);
-    if (label[r] == Topology::kNone) label[r] = uint32_t(s.components++);
+    const uint32_t r = parent[indices[3 * f]];
+    if (label[r] == kNone) label[r] = uint32_t(s.components++);
     t.face_component[f] = label[r];
   }
-  std::vector<uint8_t> open(s.components, 0);
-  for (const Edge& e : t.edges)
-    if (e.kind == EdgeKind::Boundary || e.kind == EdgeKind::NonManifold)
-      open[t.face_component[t.edge_faces[e.first] >> 1]] = 1;
-  for (uint8_t o : open) s.closed_components += !o;
+  // A component is open when an edge of it is boundary or non-manifold (its v0 is marked).
+  std::vector<uint8_t> open_component(s.components, 0);
+  for (size_t v = 0; v < vn; ++v)
+    if (open[v]) open_component[label[parent[v]]] = 1;
+  for (uint8_t o : open_component) s.closed_components += !o;
 
   s.edges = t.edges.size();
   s.closed = s.boundary_edges == 0 && s.non_manifold_edges == 0;
