@@ -76,32 +76,41 @@ void non_manifold(uint32_t* out, const uint32_t* indices, const Topology& topolo
 }  // namespace
 
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, const Topology& topology) {
-  write_own(out, indices, triangle_count);
   const uint32_t kNone = Topology::kNone;
   // An edge of two faces: each face's neighbour is the other, either way
   // round; its slot of the edge is the twin, the vertex off it the next but one.
   // A slot without a twin is on an edge of one face (its own vertex stays) or
-  // of three or more, handled once, from the slot of the edge's first face:
-  // no walk over the edge table.
+  // of three or more, handled after the pass (it writes other faces' slots),
+  // once, from the slot of the edge's first face: no walk over the edge
+  // table, and each triangle's six indices written once.
   if (topology.face_twins.size() == 3 * triangle_count && topology.face_edges.size() == 3 * triangle_count) {
     uint64_t paired = 0;
-    for (size_t s = 0; s < 3 * triangle_count; ++s) {
-      const uint32_t tw = topology.face_twins[s];
-      if (tw != kNone) {
-        const uint32_t k = tw % 3;
-        out[2 * s + 1] = indices[tw - k + (k == 0 ? 2 : k - 1)];
-        ++paired;
-        continue;
+    std::vector<uint32_t> crowded;  // edges of three or more faces
+    const uint32_t* twins = topology.face_twins.data();
+    for (size_t t = 0; t < triangle_count; ++t) {
+      const uint32_t* v = indices + 3 * t;
+      uint32_t* o = out + 6 * t;
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t tw = twins[3 * t + k];
+        o[2 * k] = v[k];
+        if (tw != kNone) {
+          const uint32_t j = tw % 3;
+          o[2 * k + 1] = indices[tw - j + (j == 0 ? 2 : j - 1)];
+          ++paired;
+          continue;
+        }
+        o[2 * k + 1] = v[k == 0 ? 2 : k - 1];  // its own opposite vertex
+        const uint32_t id = topology.face_edges[3 * t + k];
+        if (id == kNone) continue;
+        const Edge& e = topology.edges[id];
+        if (e.face_count > 2 && topology.edge_faces[e.first] >> 1 == t) crowded.push_back(id);
       }
-      const uint32_t id = topology.face_edges[s];
-      if (id == kNone) continue;
-      const Edge& e = topology.edges[id];
-      if (e.face_count > 2 && topology.edge_faces[e.first] >> 1 == s / 3)
-        non_manifold(out, indices, topology, id);
     }
+    for (uint32_t id : crowded) non_manifold(out, indices, topology, id);
     detail::count_work(2 * paired);  // 2 per face of a two-faced edge, as the walk below counts
     return true;
   }
+  write_own(out, indices, triangle_count);
   uint64_t paired = 0;
   for (uint32_t id = 0; id < topology.edges.size(); ++id) {
     const Edge& e = topology.edges[id];
