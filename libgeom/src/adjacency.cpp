@@ -6,7 +6,10 @@
 // order with the direction each runs it, so one pass over an edge's faces
 // finds the first two faces of each direction, and every face of the edge
 // gets its neighbour from those four: linear however many faces share an edge
-// or a vertex, deterministic, and the same table the other stages use.
+// or a vertex, deterministic, and the same table the other stages use. With
+// the topology's twins (nearly every edge has two faces) one pass over the
+// face slots does it: a twin gives the neighbour, a slot without one leads to
+// its edge only when that has three or more faces.
 //
 // Without a table: directed half-edges bucketed by their start vertex (a
 // counting sort), each bucket sorted by (end vertex, triangle), so "the first
@@ -40,55 +43,90 @@ void write_own(uint32_t* out, const uint32_t* indices, size_t triangle_count) {
   }
 }
 
+// Where the slot of edge `id` of triangle t is in the output.
+inline size_t slot_of(const Topology& topology, uint32_t t, uint32_t id) {
+  const uint32_t* fe = topology.face_edges.data() + 3 * size_t(t);
+  return 6 * size_t(t) + 2 * (fe[0] == id ? 0 : fe[1] == id ? 1 : 2) + 1;
+}
+
+// The neighbours across an edge of three or more faces: for each face, the
+// first face the other way, else the first other one this way.
+void non_manifold(uint32_t* out, const uint32_t* indices, const Topology& topology, uint32_t id) {
+  const uint32_t kNone = Topology::kNone;
+  const Edge& e = topology.edges[id];
+  detail::count_work(2 * uint64_t(e.face_count));
+  const uint32_t* faces = topology.edge_faces.data() + e.first;
+  uint32_t first[2][2] = {{kNone, kNone}, {kNone, kNone}};  // [direction][0: first, 1: second]
+  for (uint32_t i = 0; i < e.face_count; ++i) {
+    uint32_t* slot = first[faces[i] & 1];
+    if (slot[0] == kNone)
+      slot[0] = faces[i] >> 1;
+    else if (slot[1] == kNone)
+      slot[1] = faces[i] >> 1;
+  }
+  for (uint32_t i = 0; i < e.face_count; ++i) {
+    const uint32_t t = faces[i] >> 1, d = faces[i] & 1;
+    uint32_t n = first[d ^ 1][0];
+    if (n == kNone) n = first[d][0] != t ? first[d][0] : first[d][1];
+    if (n == kNone) continue;
+    out[slot_of(topology, t, id)] = third_of(indices + 3 * size_t(n), e.v0, e.v1);
+  }
+}
+
 }  // namespace
 
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, const Topology& topology) {
-  write_own(out, indices, triangle_count);
   const uint32_t kNone = Topology::kNone;
   // An edge of two faces: each face's neighbour is the other, either way
   // round; its slot of the edge is the twin, the vertex off it the next but one.
-  const bool twins = topology.face_twins.size() == 3 * triangle_count;
-  if (twins)
-    for (size_t s = 0; s < 3 * triangle_count; ++s) {
-      const uint32_t tw = topology.face_twins[s];
-      if (tw == kNone) continue;
-      const uint32_t k = tw % 3;
-      out[2 * s + 1] = indices[tw - k + (k == 0 ? 2 : k - 1)];
+  // A slot without a twin is on an edge of one face (its own vertex stays) or
+  // of three or more, handled after the pass (it writes other faces' slots),
+  // once, from the slot of the edge's first face: no walk over the edge
+  // table, and each triangle's six indices written once.
+  if (topology.face_twins.size() == 3 * triangle_count && topology.face_edges.size() == 3 * triangle_count) {
+    uint64_t paired = 0;
+    std::vector<uint32_t> crowded;  // edges of three or more faces
+    const uint32_t* twins = topology.face_twins.data();
+    for (size_t t = 0; t < triangle_count; ++t) {
+      const uint32_t* v = indices + 3 * t;
+      uint32_t* o = out + 6 * t;
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t tw = twins[3 * t + k];
+        o[2 * k] = v[k];
+        if (tw != kNone) {
+          const uint32_t j = tw % 3;
+          o[2 * k + 1] = indices[tw - j + (j == 0 ? 2 : j - 1)];
+          ++paired;
+          continue;
+        }
+        o[2 * k + 1] = v[k == 0 ? 2 : k - 1];  // its own opposite vertex
+        const uint32_t id = topology.face_edges[3 * t + k];
+        if (id == kNone) continue;
+        const Edge& e = topology.edges[id];
+        if (e.face_count > 2 && topology.edge_faces[e.first] >> 1 == t) crowded.push_back(id);
+      }
     }
+    for (uint32_t id : crowded) non_manifold(out, indices, topology, id);
+    detail::count_work(2 * paired);  // 2 per face of a two-faced edge, as the walk below counts
+    return true;
+  }
+  write_own(out, indices, triangle_count);
+  uint64_t paired = 0;
   for (uint32_t id = 0; id < topology.edges.size(); ++id) {
     const Edge& e = topology.edges[id];
     if (e.face_count < 2) continue;
-    detail::count_work(2 * uint64_t(e.face_count));
-    if (twins && e.face_count == 2) continue;
-    const uint32_t* faces = topology.edge_faces.data() + e.first;
-    // Where the edge slot of triangle t is.
-    const auto slot_of = [&](uint32_t t) {
-      const uint32_t* fe = topology.face_edges.data() + 3 * size_t(t);
-      return 6 * size_t(t) + 2 * (fe[0] == id ? 0 : fe[1] == id ? 1 : 2) + 1;
-    };
-    if (e.face_count == 2) {  // the usual edge: each face's neighbour is the other, either way round
-      const uint32_t t0 = faces[0] >> 1, t1 = faces[1] >> 1;
-      out[slot_of(t0)] = third_of(indices + 3 * size_t(t1), e.v0, e.v1);
-      out[slot_of(t1)] = third_of(indices + 3 * size_t(t0), e.v0, e.v1);
+    if (e.face_count > 2) {
+      non_manifold(out, indices, topology, id);
       continue;
     }
-    uint32_t first[2][2] = {{kNone, kNone}, {kNone, kNone}};  // [direction][0: first, 1: second]
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      uint32_t* slot = first[faces[i] & 1];
-      if (slot[0] == kNone)
-        slot[0] = faces[i] >> 1;
-      else if (slot[1] == kNone)
-        slot[1] = faces[i] >> 1;
-    }
-    for (uint32_t i = 0; i < e.face_count; ++i) {
-      const uint32_t t = faces[i] >> 1, d = faces[i] & 1;
-      // The first triangle the other way; else the first other one this way.
-      uint32_t n = first[d ^ 1][0];
-      if (n == kNone) n = first[d][0] != t ? first[d][0] : first[d][1];
-      if (n == kNone) continue;
-      out[slot_of(t)] = third_of(indices + 3 * size_t(n), e.v0, e.v1);
-    }
+    paired += 4;
+    // The usual edge: each face's neighbour is the other, either way round.
+    const uint32_t* faces = topology.edge_faces.data() + e.first;
+    const uint32_t t0 = faces[0] >> 1, t1 = faces[1] >> 1;
+    out[slot_of(topology, t0, id)] = third_of(indices + 3 * size_t(t1), e.v0, e.v1);
+    out[slot_of(topology, t1, id)] = third_of(indices + 3 * size_t(t0), e.v0, e.v1);
   }
+  detail::count_work(paired);
   return true;
 }
 

@@ -1,10 +1,20 @@
 // Static shadow volumes for any mesh (see geom/shadow_volume.h for why the
 // stencil counts are right). Seeds: 004_3832d04cb6bd7525.txt section 4, the
 // z-fail baseline of 001_0225cc27c0669b01.txt section 5.
+//
+// One walk over the edge table (double-sided, the default): each edge's live
+// faces are gathered once, the components joined (a union-find whose roots
+// are each component's smallest face) and the side records written, each
+// record's component id holding its face for now. Then one pass over the
+// faces numbers the components in face order (in place, in the union-find's
+// own array), one over the ids turns faces into components, one writes the
+// caps. One-sided closed components need their closedness before their
+// pairs' records: a walk joining the components comes first.
 #include "geom/shadow_volume.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "live_faces.h"
 #include "vec3.h"
@@ -12,7 +22,8 @@
 namespace geom {
 namespace {
 
-uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
+// parent[x] <= x throughout: a root is its component's smallest face.
+inline uint32_t find_root(uint32_t* parent, uint32_t v) {
   while (parent[v] != v) {
     parent[v] = parent[parent[v]];
     v = parent[v];
@@ -20,74 +31,89 @@ uint32_t find_root(std::vector<uint32_t>& parent, uint32_t v) {
   return v;
 }
 
-void put(float out[3], const Float3& p, const double origin[3]) {
-  out[0] = float(double(p.x) - origin[0]);
-  out[1] = float(double(p.y) - origin[1]);
-  out[2] = float(double(p.z) - origin[2]);
+inline void unite(uint32_t* parent, uint32_t a, uint32_t b) {
+  a = find_root(parent, a), b = find_root(parent, b);
+  if (a < b)
+    parent[b] = a;
+  else
+    parent[a] = b;
 }
 
-}  // namespace
-
-ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                                 const Topology& topology, const FacePlanes& fp, const ShadowVolumeOptions& options) {
+// The volume; `planes` (fp's plane table, copied or moved) becomes sv.planes.
+ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t triangle_count, const Topology& topology,
+                   const FacePlanes& fp, std::vector<float> planes, const ShadowVolumeOptions& options) {
   ShadowVolume sv;
   ShadowVolumeStats& st = sv.stats;
   for (int a = 0; a < 3; ++a) sv.origin[a] = fp.origin[a];
-  sv.planes = fp.planes;
+  sv.planes = std::move(planes);
   st.edges = topology.edges.size();
-  auto has_plane = [&](uint32_t f) { return fp.face_plane[f] != FacePlanes::kNone; };
+  const uint32_t* face_plane = fp.face_plane.data();
+  const bool ids = options.component_ids || options.one_sided_closed;
+  // Streamed (options.sides_out, caps_out), the records go out a piece at a
+  // time and only a piece is ever held.
+  constexpr size_t kPiece = 4096;
+  const bool stream_sides = bool(options.sides_out), stream_caps = bool(options.caps_out);
+  const bool side_ids = ids && !stream_sides, cap_ids = ids && !stream_caps;
+  uint64_t sides_sent = 0, caps_sent = 0;
 
-  // Components over non-degenerate faces; a component is closed (one-sided)
-  // when each of its edges has exactly two such faces in opposite directions.
-  std::vector<uint32_t> parent(triangle_count);
-  for (size_t f = 0; f < triangle_count; ++f) parent[f] = uint32_t(f);
-  detail::LiveFaces live;  // the non-degenerate faces of one edge, as edge_faces entries
-  std::vector<uint8_t> open_root(triangle_count, 0);
-  auto gather = [&](const Edge& e) { live.gather(topology, fp, e); };
-  auto is_pair = [&]() { return live.size() == 2 && ((live[0] ^ live[1]) & 1u); };
+  // The vertices in the local frame, each converted once (the records copy them).
+  std::vector<float> local(3 * positions.size());
+  for (size_t v = 0; v < positions.size(); ++v) {
+    const Float3& p = positions[v];
+    local[3 * v] = float(double(p.x) - sv.origin[0]);
+    local[3 * v + 1] = float(double(p.y) - sv.origin[1]);
+    local[3 * v + 2] = float(double(p.z) - sv.origin[2]);
+  }
+  const float* lp = local.data();
+
+  // Components over non-degenerate faces (a component is closed when each of
+  // its edges has exactly two such faces in opposite directions): a
+  // union-find, then in the same array each face's dense id, in face order.
+  std::vector<uint32_t> component(ids ? triangle_count : 0);
+  uint32_t* parent = component.data();
+  for (size_t f = 0; f < component.size(); ++f) parent[f] = uint32_t(f);
   std::vector<uint32_t> open_faces;  // a face of each edge that is not a pair: its component is open
-  for (const Edge& e : topology.edges) {
-    gather(e);
-    for (size_t i = 1; i < live.size(); ++i) {
-      const uint32_t a = find_root(parent, live[0] >> 1), b = find_root(parent, live[i] >> 1);
-      if (a != b) parent[b] = a;
+  detail::LiveFaces live;            // the non-degenerate faces of one edge, as edge_faces entries
+  const auto is_pair = [&]() { return live.size() == 2 && ((live[0] ^ live[1]) & 1u); };
+  const auto join = [&]() {  // the gathered edge's faces
+    for (size_t i = 1; i < live.size(); ++i) unite(parent, live[0] >> 1, live[i] >> 1);
+    if (!is_pair()) open_faces.push_back(live[0] >> 1);
+  };
+  bool numbered = false;
+  const auto number = [&]() {  // a face's parent is never after it: its slot already holds the id
+    for (size_t f = 0; f < triangle_count; ++f) {
+      if (face_plane[f] == FacePlanes::kNone) continue;
+      const uint32_t p = parent[f];
+      if (p == f) {
+        component[f] = uint32_t(sv.component_closed.size());
+        sv.component_closed.push_back(1);
+      } else {
+        component[f] = component[p];
+      }
     }
-    if (!live.empty() && !is_pair()) open_faces.push_back(live[0] >> 1);
+    for (uint32_t f : open_faces) sv.component_closed[component[f]] = 0;
+    std::vector<uint32_t>().swap(open_faces);
+    numbered = true;
+  };
+  const auto double_sided = [&](uint32_t f) { return !options.one_sided_closed || !sv.component_closed[component[f]]; };
+  // One-sided, a pair's multiplicity depends on its component's closedness:
+  // the components first. Double-sided, they are joined in the records' walk.
+  if (options.one_sided_closed) {
+    for (const Edge& e : topology.edges) {
+      live.gather(topology, fp, e);
+      if (!live.empty()) join();
+    }
+    number();
   }
-  for (uint32_t f : open_faces) open_root[find_root(parent, f)] = 1;
-  // Dense component ids, in face order; which faces are double-sided.
-  std::vector<uint32_t> component(triangle_count, FacePlanes::kNone), dense(triangle_count, FacePlanes::kNone);
-  std::vector<uint8_t> double_sided(triangle_count, 0);
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (!has_plane(uint32_t(f))) {
-      ++st.degenerate_faces;
-      continue;
-    }
-    const uint32_t root = find_root(parent, uint32_t(f));
-    if (dense[root] == FacePlanes::kNone) {
-      dense[root] = uint32_t(sv.component_closed.size());
-      sv.component_closed.push_back(!open_root[root]);
-    }
-    component[f] = dense[root];
-    double_sided[f] = !options.one_sided_closed || open_root[root];
-    ++(double_sided[f] ? st.double_sided_faces : st.one_sided_faces);
-  }
-  st.components = sv.component_closed.size();
-  for (uint8_t c : sv.component_closed) st.closed_components += c;
 
   // Side records, in edge order; room for the most (a pair: two records, else
   // one per face), so the buffers never grow.
-  // Streamed (options.sides_out), the records go out a piece at a time and
-  // only a piece is ever held.
-  constexpr size_t kPiece = 4096;
-  const bool stream_sides = bool(options.sides_out), stream_caps = bool(options.caps_out);
-  uint64_t sides_sent = 0, caps_sent = 0;
   if (stream_sides) {
     sv.sides.reserve(kPiece);
   } else {
     const size_t most = topology.edge_faces.size();  // the sum of those over the edges
     sv.sides.reserve(most);
-    sv.side_component.reserve(most);
+    if (side_ids) sv.side_component.reserve(most);
   }
   const auto send_sides = [&] {
     options.sides_out(sv.sides.data(), sv.sides.size());
@@ -95,58 +121,64 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     sv.sides.clear();
   };
   // Each record written in place, field by field (one built aside and copied
-  // in stalls on its partly written bytes).
-  const auto add_side = [&](const Float3& p0, const Float3& p1, uint32_t plane_a, uint32_t plane_b,
-                            uint32_t component_id) {
+  // in stalls on its partly written bytes). Its id: the component once
+  // numbered, else its face for now.
+  const auto add_side = [&](uint32_t v0, uint32_t v1, uint32_t plane_a, uint32_t plane_b, uint32_t face) {
     SvSide& s = sv.sides.emplace_back();
-    put(s.p0, p0, sv.origin);
-    put(s.p1, p1, sv.origin);
+    std::memcpy(s.p0, lp + 3 * size_t(v0), 12);
+    std::memcpy(s.p1, lp + 3 * size_t(v1), 12);
     s.plane_a = plane_a;
     s.plane_b = plane_b;
-    if (!stream_sides)
-      sv.side_component.push_back(component_id);
-    else if (sv.sides.size() == kPiece)
+    if (side_ids)
+      sv.side_component.push_back(numbered ? component[face] : face);
+    else if (stream_sides && sv.sides.size() == kPiece)
       send_sides();
   };
   for (const Edge& e : topology.edges) {
-    gather(e);
+    live.gather(topology, fp, e);
     if (live.empty()) continue;
     st.naive_sides += live.size();
+    if (ids && !numbered) join();
     if (is_pair()) {
       const uint32_t fa = (live[0] & 1u) ? live[1] >> 1 : live[0] >> 1;  // traverses v0 -> v1
       const uint32_t fb = (live[0] & 1u) ? live[0] >> 1 : live[1] >> 1;
-      if (fp.face_plane[fa] == fp.face_plane[fb]) {
+      const uint32_t pa = face_plane[fa], pb = face_plane[fb];
+      const bool ds = double_sided(fa);
+      if (pa == pb) {
         ++st.skipped_coplanar;
-        st.skipped_coplanar_records += double_sided[fa] ? 2 : 1;
+        st.skipped_coplanar_records += ds ? 2 : 1;
         continue;
       }
       ++st.pair_edges;
-      add_side(positions[e.v0], positions[e.v1], fp.face_plane[fa], fp.face_plane[fb], component[fa]);
-      if (double_sided[fa])  // multiplicity up to 2: the second copy
-        add_side(positions[e.v0], positions[e.v1], fp.face_plane[fa] | SvSide::kSecond, fp.face_plane[fb],
-                 component[fa]);
+      add_side(e.v0, e.v1, pa, pb, fa);
+      if (ds) add_side(e.v0, e.v1, pa | SvSide::kSecond, pb, fa);  // multiplicity up to 2: the second copy
       continue;
     }
     for (uint32_t ef : live) {
       const bool reversed = ef & 1u;
-      const uint32_t plane = fp.face_plane[ef >> 1];
+      const uint32_t plane = face_plane[ef >> 1];
       ++st.single_records;
-      add_side(positions[reversed ? e.v1 : e.v0], positions[reversed ? e.v0 : e.v1], plane, plane | SvSide::kFlip,
-               component[ef >> 1]);
+      add_side(reversed ? e.v1 : e.v0, reversed ? e.v0 : e.v1, plane, plane | SvSide::kFlip, ef >> 1);
     }
   }
-
   if (stream_sides) {
     if (!sv.sides.empty()) send_sides();
     std::vector<SvSide>().swap(sv.sides);
   }
+  if (ids && !numbered) {
+    number();
+    for (uint32_t& id : sv.side_component) id = component[id];  // faces to components
+  }
+  st.components = sv.component_closed.size();
+  for (uint8_t c : sv.component_closed) st.closed_components += c;
 
   // Caps: every non-degenerate face.
   if (stream_caps) {
     sv.caps.reserve(kPiece);
   } else {
-    sv.caps.reserve(triangle_count - st.degenerate_faces);
-    sv.cap_component.reserve(triangle_count - st.degenerate_faces);
+    const size_t caps = triangle_count - std::min<uint64_t>(fp.degenerate_faces, triangle_count);
+    sv.caps.reserve(caps);
+    if (cap_ids) sv.cap_component.reserve(caps);
   }
   const auto send_caps = [&] {
     options.caps_out(sv.caps.data(), sv.caps.size());
@@ -154,15 +186,21 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
     sv.caps.clear();
   };
   for (size_t f = 0; f < triangle_count; ++f) {
-    if (!has_plane(uint32_t(f))) continue;
+    if (face_plane[f] == FacePlanes::kNone) {
+      ++st.degenerate_faces;
+      continue;
+    }
     SvCap& c = sv.caps.emplace_back();
-    put(c.a, positions[indices[3 * f]], sv.origin);
-    put(c.b, positions[indices[3 * f + 1]], sv.origin);
-    put(c.c, positions[indices[3 * f + 2]], sv.origin);
-    c.plane = fp.face_plane[f] | (double_sided[f] ? SvCap::kDoubleSided : 0u);
-    if (!stream_caps)
+    const uint32_t* v = indices + 3 * f;
+    std::memcpy(c.a, lp + 3 * size_t(v[0]), 12);
+    std::memcpy(c.b, lp + 3 * size_t(v[1]), 12);
+    std::memcpy(c.c, lp + 3 * size_t(v[2]), 12);
+    const bool ds = double_sided(uint32_t(f));
+    c.plane = face_plane[f] | (ds ? SvCap::kDoubleSided : 0u);
+    ++(ds ? st.double_sided_faces : st.one_sided_faces);
+    if (cap_ids)
       sv.cap_component.push_back(component[f]);
-    else if (sv.caps.size() == kPiece)
+    else if (stream_caps && sv.caps.size() == kPiece)
       send_caps();
   }
   if (stream_caps) {
@@ -175,6 +213,19 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
   st.bytes = st.sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
   st.naive_bytes = st.naive_sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
   return sv;
+}
+
+}  // namespace
+
+ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                                 const Topology& topology, const FacePlanes& fp, const ShadowVolumeOptions& options) {
+  return build(positions, indices, triangle_count, topology, fp, fp.planes, options);
+}
+
+ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                                 const Topology& topology, FacePlanes&& fp, const ShadowVolumeOptions& options) {
+  std::vector<float> planes = std::move(fp.planes);
+  return build(positions, indices, triangle_count, topology, fp, std::move(planes), options);
 }
 
 namespace {

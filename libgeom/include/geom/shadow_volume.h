@@ -174,7 +174,8 @@ struct ShadowVolume {
   std::vector<SvCap> caps;
   ShadowVolumeStats stats;
   // CPU-side, not uploaded: per record, its component (faces connected through
-  // shared edges); per component, whether it is closed. build_light_volume uses them.
+  // shared edges); per component, whether it is closed. build_light_volume uses
+  // them (only it reads them); empty with ShadowVolumeOptions::component_ids off.
   std::vector<uint32_t> side_component, cap_component;
   std::vector<uint8_t> component_closed;
   // Set by build_light_volume: the light (local frame) this volume is exact for.
@@ -184,6 +185,12 @@ struct ShadowVolume {
 
 struct ShadowVolumeOptions {
   bool one_sided_closed = false;  // classic one-sided closed components (lights outside them only)
+  // Fill side_component, cap_component, component_closed and stats.components /
+  // closed_components. Off (and one_sided_closed off), the components are never
+  // computed: same records and caps, less time and memory; build_light_volume
+  // then keeps every component double-sided (correct, larger). A bake without
+  // lights has no use for them.
+  bool component_ids = true;
   // Set, the side records (then the caps) go to it in pieces, in order, as
   // they are made, and are not kept: the result's sides and side_component
   // (caps and cap_component) stay empty, its stats count every record. What
@@ -196,6 +203,11 @@ struct ShadowVolumeOptions {
 // The generic, light-independent volume of a welded mesh.
 ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                  const Topology& topology, const FacePlanes& planes,
+                                 const ShadowVolumeOptions& options = {});
+// The same, taking planes.planes into ShadowVolume::planes instead of copying
+// it (planes.planes is left empty; the rest of `planes` is only read).
+ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                                 const Topology& topology, FacePlanes&& planes,
                                  const ShadowVolumeOptions& options = {});
 
 // The exact volume of one static light (local frame, w = 1 point, w = 0 direction
