@@ -122,3 +122,33 @@ TEST(FacePlanes, LightInFront) {
   EXPECT_FALSE(light_in_front(plane, on));
   EXPECT_TRUE(light_in_front(plane, towards_z));
 }
+
+// The frame is the box of the referenced vertices: an unused vertex far away
+// moves nothing (the index pass), and every vertex used gives the same frame
+// from the vertex pass.
+TEST(FacePlanes, FrameIsTheBoxOfTheReferencedVertices) {
+  std::vector<float> p = kQuad;
+  p.insert(p.end(), {100, 100, 100});  // vertex 4, referenced by no face
+  const FacePlanes f = planes_of(p, kQuadI);
+  EXPECT_EQ(f.origin[0], 0.5);
+  EXPECT_EQ(f.origin[1], 0.5);
+  EXPECT_EQ(f.origin[2], 0.0);
+  EXPECT_NEAR(f.diagonal, std::sqrt(2.0), 1e-12);
+  const FacePlanes g = planes_of(kQuad, kQuadI);  // all used
+  EXPECT_EQ(g.origin[0], f.origin[0]);
+  EXPECT_EQ(g.origin[1], f.origin[1]);
+  EXPECT_EQ(g.diagonal, f.diagonal);
+}
+
+// An axis flat at zero with both signs of zero: the box keeps the sign of the
+// first zero the faces reach (here -0, vertex 1 opening the first face), not
+// the first in vertex order (+0), so the frame and every stored bit are as
+// the faces read them.
+TEST(FacePlanes, FlatAtZeroKeepsTheSignTheFacesReachFirst) {
+  const std::vector<float> p = {0, 0, 0.0f, 1, 0, -0.0f, 1, 1, 0.0f, 0, 1, -0.0f};
+  const FacePlanes f = planes_of(p, {1, 2, 3, 1, 3, 0});
+  EXPECT_EQ(f.origin[2], 0.0);
+  EXPECT_TRUE(std::signbit(f.origin[2]));
+  const FacePlanes g = planes_of(p, {0, 1, 2, 0, 2, 3});
+  EXPECT_FALSE(std::signbit(g.origin[2]));
+}
