@@ -44,8 +44,8 @@ struct stat stat_of(const std::string& path) {
 }  // namespace
 
 TEST(BakedWriter, WritesOnlyWhatChanged) {
-  const std::string dir = ::testing::TempDir();
-  const std::string path = dir + "/written_if_changed.gbake", other = dir + "/symlink_target.gbake";
+  testfs::Scratch dir("baked_writer_changed");  // this process's own: two test runs at once share nothing
+  const std::string path = dir / "written_if_changed.gbake", other = dir / "symlink_target.gbake";
   std::mt19937 rng(3);
   for (int round = 0; round < 24; ++round) {
     const std::vector<geom::BakedSection> sections = random_sections(rng);
@@ -108,7 +108,8 @@ TEST(BakedWriter, WritesOnlyWhatChanged) {
 
 // A bad section: the error, nothing written, the old file kept.
 TEST(BakedWriter, BadSectionWritesNothing) {
-  const std::string path = ::testing::TempDir() + "/bad_section.gbake";
+  testfs::Scratch dir("baked_writer_bad");
+  const std::string path = dir / "bad_section.gbake";
   write_all(path, {1, 2, 3});
   geom::BakedSection s;
   s.name = "a name far longer than fifteen characters";
