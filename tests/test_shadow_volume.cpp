@@ -27,7 +27,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <random>
 
@@ -726,45 +725,3 @@ TEST(ShadowVolume, LightOnTheSurfaceCounts) {
 }
 
 }  // namespace
-
-// The volume streamed (ShadowVolumeOptions::sides_out / caps_out) is the kept
-// one, record for record and in order, in pieces of at most 4096, with the
-// same stats; nothing of it is kept. Every fixture (open, non-manifold,
-// degenerate ones included), one- and double-sided, and a sphere of more than
-// 4096 records of each kind, so the pieces split.
-TEST(ShadowVolume, StreamedRecordsAreTheKeptOnes) {
-  std::vector<Mesh> meshes = all_meshes();
-  meshes.push_back(fixtures::sphere(80, 40));
-  for (const Mesh& m : meshes)
-    for (bool one_sided : {false, true}) {
-      geom::ShadowVolumeOptions kept;
-      kept.one_sided_closed = one_sided;
-      const fixtures::Baked b = fixtures::bake(m, kept);
-      std::vector<geom::SvSide> sides;
-      std::vector<geom::SvCap> caps;
-      size_t most = 0, calls = 0;
-      geom::ShadowVolumeOptions streamed = kept;
-      streamed.sides_out = [&](const geom::SvSide* p, size_t n) {
-        EXPECT_TRUE(caps.empty()) << "a side after a cap";
-        sides.insert(sides.end(), p, p + n), most = std::max(most, n), ++calls;
-      };
-      streamed.caps_out = [&](const geom::SvCap* p, size_t n) {
-        caps.insert(caps.end(), p, p + n), most = std::max(most, n), ++calls;
-      };
-      const geom::ShadowVolume v = geom::build_shadow_volume(
-          geom::positions_of(b.weld.positions.data(), b.weld.vertex_count()), b.weld.indices.data(),
-          b.weld.indices.size() / 3, b.topology, b.planes, streamed);
-      const std::string what = m.name + (one_sided ? " one-sided" : "");
-      ASSERT_EQ(sides.size(), b.volume.sides.size()) << what;
-      ASSERT_EQ(caps.size(), b.volume.caps.size()) << what;
-      EXPECT_EQ(std::memcmp(sides.data(), b.volume.sides.data(), sides.size() * sizeof(geom::SvSide)), 0) << what;
-      EXPECT_EQ(std::memcmp(caps.data(), b.volume.caps.data(), caps.size() * sizeof(geom::SvCap)), 0) << what;
-      EXPECT_LE(most, 4096u) << what;
-      EXPECT_TRUE(v.sides.empty() && v.caps.empty() && v.side_component.empty() && v.cap_component.empty()) << what;
-      EXPECT_EQ(v.stats.sides, b.volume.stats.sides) << what;
-      EXPECT_EQ(v.stats.caps, b.volume.stats.caps) << what;
-      EXPECT_EQ(v.stats.bytes, b.volume.stats.bytes) << what;
-      EXPECT_EQ(v.planes, b.volume.planes) << what;
-      if (m.name == "sphere" && b.volume.caps.size() > 4096) EXPECT_GT(calls, 3u) << what;
-    }
-}
