@@ -69,7 +69,6 @@ void free_vector(std::vector<T>& v) {
   std::vector<T>().swap(v);
 }
 
-
 // A section that views `values` (no copy) inside the stage result `keep` holds.
 template <class T>
 BakedSection view_section(SectionType type, Format format, uint32_t stride, const char* name,

@@ -90,7 +90,9 @@ class QBatch {
     const __m128d zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0), minus_one = _mm_set1_pd(-1.0);
     const __m128d sign = _mm_set1_pd(-0.0);
     const auto abs = [&](__m128d v) { return _mm_andnot_pd(sign, v); };
-    const auto select = [](__m128d m, __m128d a, __m128d b) { return _mm_or_pd(_mm_and_pd(m, a), _mm_andnot_pd(m, b)); };
+    const auto select = [](__m128d m, __m128d a, __m128d b) {
+      return _mm_or_pd(_mm_and_pd(m, a), _mm_andnot_pd(m, b));
+    };
     const __m128d ax = _mm_loadu_pd(x_ + i), ay = _mm_loadu_pd(y_ + i), az = _mm_loadu_pd(z_ + i);
     // unit(): a * (1 / |a|), or +z.
     const __m128d l = _mm_sqrt_pd(_mm_add_pd(_mm_add_pd(_mm_mul_pd(ax, ax), _mm_mul_pd(ay, ay)), _mm_mul_pd(az, az)));

@@ -216,8 +216,10 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
         parent[v1] = r0;
       } else {
         const uint32_t r1 = find_root(parent.data(), v1);
-        if (r1 < r0) parent[r0] = r1, r0 = r1;
-        else if (r1 > r0) parent[r1] = r0;
+        if (r1 < r0)
+          parent[r0] = r1, r0 = r1;
+        else if (r1 > r0)
+          parent[r1] = r0;
       }
       if (face_count == 1) {
         const uint32_t sl = uint32_t(*run);
