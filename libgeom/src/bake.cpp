@@ -227,8 +227,9 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
     RecordStream sides(out, SectionType::VolumeSides, "volume_sides", sizeof(SvSide));
     RecordStream caps(out, SectionType::VolumeCaps, "volume_caps", sizeof(SvCap));
     if (stream_esm) po.esm_options.quads_out = [&](const EsmQuad* p, size_t n) { quads.write(p, n); };
+    // The volume's component ids are read by the light volumes only: none here.
+    if (lights.empty()) po.volume_options.component_ids = false;
     if (stream_volume) {
-      po.volume_options.component_ids = false;  // read by the light volumes only: none here
       po.volume_options.sides_out = [&](const SvSide* p, size_t n) { sides.write(p, n); };
       po.volume_options.caps_out = [&](const SvCap* p, size_t n) {
         sides.close();
