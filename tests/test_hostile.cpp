@@ -468,26 +468,39 @@ TEST(Hostile, TimedOutWorkIsStopped) {
     if (i) fs::copy_file(d / "q0.obj", q);
     args.push_back(q.string());
   }
-  const cli::Run alone = cli::run(args, d / "l3", 300);
-  ASSERT_EQ(alone.exit_code, 0) << cli::describe(alone);
-  args[4] = (d / "q2").string();  // a fresh folder: every output written both times
-  args.insert(args.begin() + 5, (d / "slow.gltf").string());
   // A limit far under the slow input's time, far over a quick one's (under load or a sanitizer too):
   // a fifth of the slow input, which on a loaded 2-core machine left a quick input (~10 ms alone)
   // more than 30x its own time before a stall could make it time out (at a twentieth, one did).
   const double limit = std::max(0.2 * slow.wall_seconds, 3 * one.wall_seconds);
   ASSERT_LT(limit, 0.4 * slow.wall_seconds) << "slow " << slow.wall_seconds << " s, quick " << one.wall_seconds << " s";
-  args.insert(args.end(), {"--timeout", std::to_string(limit)});
-  const cli::Run both = cli::run(args, d / "l4", 300);
-  EXPECT_EQ(both.exit_code, 1) << cli::describe(both);
-  EXPECT_TRUE(has(both.err, "slow.gltf: timed out after")) << both.err;
-  EXPECT_EQ(cli::listing(d / "q2").size(), size_t(quick)) << both.err.substr(0, 2000);
+  std::vector<std::string> with_slow = args;
+  with_slow.insert(with_slow.begin() + 5, (d / "slow.gltf").string());
+  with_slow.insert(with_slow.end(), {"--timeout", std::to_string(limit)});
   // Work left running would add the whole slow input (1.0); stopped work adds the fifth it ran
-  // before its limit plus its unwinding; the quick inputs' own CPU time (twice the slow input's)
-  // varies by a few percent, by up to ~10% under a sanitizer, so the bar sits higher there.
+  // before its limit plus its unwinding. CPU time is noisy where the machine is loaded (two
+  // threads on one core's siblings each run slower): the quick inputs alone and with the slow
+  // one are run back to back, and the pair is tried again, up to three times, where the
+  // difference is over the bar; work left running is over it on every try.
   const double kept = cli::kSanitizerFactor > 1 ? 0.7 : 0.6;
-  EXPECT_LT(both.cpu_seconds, alone.cpu_seconds + kept * slow.cpu_seconds)
-      << "slow alone " << slow.cpu_seconds << " s, " << quick << " quick alone " << alone.cpu_seconds << " s";
+  std::string why;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const std::string tag = std::to_string(attempt);
+    args[4] = (d / ("alone" + tag)).string();  // fresh folders: every output written each time
+    with_slow[4] = (d / ("both" + tag)).string();
+    const cli::Run alone = cli::run(args, d / ("l3" + tag), 300);
+    ASSERT_EQ(alone.exit_code, 0) << cli::describe(alone);
+    const cli::Run both = cli::run(with_slow, d / ("l4" + tag), 300);
+    EXPECT_EQ(both.exit_code, 1) << cli::describe(both);
+    EXPECT_TRUE(has(both.err, "slow.gltf: timed out after")) << both.err;
+    EXPECT_EQ(cli::listing(d / ("both" + tag)).size(), size_t(quick)) << both.err.substr(0, 2000);
+    const double extra = both.cpu_seconds - alone.cpu_seconds;
+    why += "try " + tag + ": " + std::to_string(extra) + " s more with the slow input (" +
+           std::to_string(both.wall_seconds) + " s wall); ";
+    if (extra < kept * slow.cpu_seconds) break;
+    if (attempt == 2)
+      ADD_FAILURE() << why << "slow alone " << slow.cpu_seconds << " s CPU (" << slow.wall_seconds << " s wall), "
+                    << quick << " quick alone " << alone.cpu_seconds << " s CPU, limit " << limit << " s";
+  }
 }
 
 // --max-memory bounds what is really allocated, not an estimate from the
