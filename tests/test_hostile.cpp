@@ -477,8 +477,8 @@ TEST(Hostile, TimedOutWorkIsStopped) {
   with_slow.insert(with_slow.begin() + 5, (d / "slow.gltf").string());
   with_slow.insert(with_slow.end(), {"--timeout", std::to_string(limit)});
   // Work left running would add the whole slow input (1.0); stopped work adds the fifth it ran
-  // before its limit plus its unwinding. CPU time is noisy where the machine is loaded (two
-  // threads on one core's siblings each run slower): the quick inputs alone and with the slow
+  // before its limit plus its unwinding. CPU time is noisy where the machine is loaded (a thread
+  // that shares its core or its caches runs slower): the quick inputs alone and with the slow
   // one are run back to back, and the pair is tried again, up to three times, where the
   // difference is over the bar; work left running is over it on every try.
   const double kept = cli::kSanitizerFactor > 1 ? 0.7 : 0.6;
