@@ -177,7 +177,8 @@ namespace {
 enum class Stage : unsigned { Weld, Topology, Halfedge, Planes, Adjacency, Esm, Volume, Lights, Count };
 
 Stage stage_of(const char* name) {
-  static const char* const kNames[] = {"weld", "topology", "halfedge", "planes", "adjacency", "esm", "volume", "lights"};
+  static const char* const kNames[] = {"weld",      "topology", "halfedge", "planes",
+                                       "adjacency", "esm",      "volume",   "lights"};
   for (unsigned i = 0; i < unsigned(Stage::Count); ++i)
     if (std::strcmp(name, kNames[i]) == 0) return Stage(i);
   return Stage::Count;  // a stage no section waits for
@@ -195,7 +196,12 @@ enum class Step { Wait, Next, Stop };
 class Baker {
  public:
   Baker(const Scene& scene, Scene* release, const std::string& name, const BakeOptions& options, BakedFileWriter* out)
-      : scene_(scene), release_(release), name_(name), options_(options), asked_(options.pipeline), out_(out),
+      : scene_(scene),
+        release_(release),
+        name_(name),
+        options_(options),
+        asked_(options.pipeline),
+        out_(out),
         quads_(out, SectionType::EsmQuads, "esm_quads", sizeof(EsmQuad)),
         sides_(out, SectionType::VolumeSides, "volume_sides", sizeof(SvSide)),
         caps_(out, SectionType::VolumeCaps, "volume_caps", sizeof(SvCap)) {}
@@ -262,7 +268,7 @@ class Baker {
       po.release_early = false;
     }
     more_ = asked_.esm || asked_.volume || asked_.adjacency || !lights_.empty();  // past the topology
-    framed_ = asked_.esm || asked_.volume || !lights_.empty();                   // buffers in the local frame
+    framed_ = asked_.esm || asked_.volume || !lights_.empty();                    // buffers in the local frame
     // Streamed, the ESM quads and (without lights: no light volume reads the
     // generic one) the volume's side records and caps go to the file as their
     // stage makes them, a piece at a time: they are most of the file, and
@@ -324,15 +330,24 @@ class Baker {
 
   Step emit_group(Group group, Pipeline& p, bool all) {
     switch (group) {
-      case Group::Mesh: return mesh(p, all);
-      case Group::Topology: return topology(p, all);
-      case Group::Esm: return esm(p, all);
-      case Group::Volume: return volume(p, all);
-      case Group::Adjacency: return adjacency(p, all);
-      case Group::LightTable: return light_table();
-      case Group::LightVolumes: return light_volumes(p, all);
-      case Group::Silhouette: return silhouette(all);
-      case Group::Done: break;
+      case Group::Mesh:
+        return mesh(p, all);
+      case Group::Topology:
+        return topology(p, all);
+      case Group::Esm:
+        return esm(p, all);
+      case Group::Volume:
+        return volume(p, all);
+      case Group::Adjacency:
+        return adjacency(p, all);
+      case Group::LightTable:
+        return light_table();
+      case Group::LightVolumes:
+        return light_volumes(p, all);
+      case Group::Silhouette:
+        return silhouette(all);
+      case Group::Done:
+        break;
     }
     return Step::Stop;
   }
@@ -358,8 +373,8 @@ class Baker {
         if (!put_face_planes(*out_, p.planes, meta)) throw WriteFailed();
         r_.sections.push_back(std::move(meta));
       } else {
-        emit(make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes",
-                                world_face_planes(p.planes)));
+        emit(
+            make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes", world_face_planes(p.planes)));
       }
     }
     if (!out_) {  // no later section reads them (with `out_` the volume still does)
@@ -378,8 +393,8 @@ class Baker {
     if (framed_) {
       std::vector<double> origin(p.planes.origin, p.planes.origin + 3);
       emit(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
-      js_ += "\"frame\":[" + json::number(origin[0]) + "," + json::number(origin[1]) + "," +
-             json::number(origin[2]) + "],";
+      js_ += "\"frame\":[" + json::number(origin[0]) + "," + json::number(origin[1]) + "," + json::number(origin[2]) +
+             "],";
     }
     return Step::Next;
   }
