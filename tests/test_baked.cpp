@@ -852,6 +852,33 @@ TEST(BakeRealFile, DracoBoxGltf) {
   EXPECT_EQ(f.reader().find(SectionType::Indices)->count, 36u);
 }
 
+// The library's bake_file and `geombake bake` of one input write the same
+// bytes: both store the input's base name (no path of the machine), and the
+// importer's warnings with it; a name the caller gives is stored instead.
+TEST(BakeRealFile, LibraryBakeIsTheCliBake) {
+  const std::string dir = temp_dir("libcli");
+  write_text(dir + "/warned.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nl 1 2\nf 1 2 3\nf 1 3 4\n");  // a line: a warning
+  const std::vector<std::string> inputs = {kBoxObj, kDracoBox, std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf",
+                                           dir + "/warned.obj"};
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    SCOPED_TRACE(inputs[i]);
+    const std::string lib = dir + "/lib" + std::to_string(i) + ".gbake", cli = dir + "/cli" + std::to_string(i) + ".gbake";
+    const geom::BakeResult r = geom::bake_file(inputs[i], lib);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(r.report.file, geom::stored_name(inputs[i]));
+    const CliRun run = geombake(dir, "bake -q '" + inputs[i] + "' -o '" + cli + "'");
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(read_bytes(lib), read_bytes(cli));
+  }
+  const std::string named = dir + "/named.gbake";
+  const geom::BakeResult r = geom::bake_file(kBoxObj, named, {}, {}, "asset/box.obj");
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.report.file, "asset/box.obj");
+  EXPECT_EQ(geom::stored_name("/a/b/pig.off"), "pig.off");
+  EXPECT_EQ(geom::stored_name("pig.off"), "pig.off");
+  EXPECT_EQ(geom::stored_name("/x/Maps.PK3:maps/q3dm1.bsp"), "Maps.PK3:maps/q3dm1.bsp");
+}
+
 TEST(BakeRealFile, FailedBakeLeavesNoFile) {
   std::string dir = temp_dir("failedbake");
   write_text(dir + "/bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");  // vertex 9 does not exist
