@@ -51,22 +51,28 @@
 // records' structs are in geom/baked_records.h, standard library only like
 // this file; their layouts are documented in geom/esm_quads.h and
 // geom/shadow_volume.h):
-//   type               format  stride  count            upload as
-//   Positions          F32x3   12      welded vertices  GL_ARRAY_BUFFER
-//   Indices            U32     4       3 x triangles    GL_ELEMENT_ARRAY_BUFFER
-//   WeldRemap          U32     4       source vertices  (source vertex -> welded vertex)
-//   FacePlanes         F32x4   16      triangles        (nx, ny, nz, d), n unit, n.p + d = 0
-//   TopologyReport     Utf8    1       bytes            (JSON, keys of `geombake info --json`)
-//   Frame              F64x3   24      1                (origin of the local frame of what follows)
-//   EsmQuads           Record  36      quads            GL_ARRAY_BUFFER, one instance per record
-//   EsmPlanes          F32x4   16      planes           GL_TEXTURE_BUFFER (RGBA32F)
-//   VolumeSides        Record  32      sides            GL_ARRAY_BUFFER, one instance per record
-//   VolumeCaps         Record  40      caps             GL_ARRAY_BUFFER, one instance per record
-//   VolumePlanes       F32x4   16      planes           GL_TEXTURE_BUFFER (RGBA32F)
-//   AdjacencyIndices   U32     4       6 x triangles    GL_ELEMENT_ARRAY_BUFFER (GL_TRIANGLES_ADJACENCY)
-//   Lights             F64x4   32      lights           ((x, y, z, w) input coordinates, w = 0 directional)
-//   LightSides/Caps/Planes (item = light index): as VolumeSides/Caps/Planes, exact for that light
-//   SilhouetteReport   Utf8    1       bytes            (JSON: what each rule saved, the lights)
+//   type               format  stride  count            frame  upload as
+//   Positions          F32x3   12      welded vertices  input  GL_ARRAY_BUFFER
+//   Indices            U32     4       3 x triangles    -      GL_ELEMENT_ARRAY_BUFFER
+//   WeldRemap          U32     4       source vertices  -      (source vertex -> welded vertex)
+//   FacePlanes         F32x4   16      triangles        input  (nx, ny, nz, d), n unit, n.p + d = 0
+//   TopologyReport     Utf8    1       bytes            -      (JSON, keys of `geombake info --json`)
+//   Frame              F64x3   24      1                input  (origin of the local frame: local = input - origin)
+//   EsmQuads           Record  36      quads            local  GL_ARRAY_BUFFER, one instance per record
+//   EsmPlanes          F32x4   16      planes           local  GL_TEXTURE_BUFFER (RGBA32F)
+//   VolumeSides        Record  32      sides            local  GL_ARRAY_BUFFER, one instance per record
+//   VolumeCaps         Record  40      caps             local  GL_ARRAY_BUFFER, one instance per record
+//   VolumePlanes       F32x4   16      planes           local  GL_TEXTURE_BUFFER (RGBA32F)
+//   AdjacencyIndices   U32     4       6 x triangles    -      GL_ELEMENT_ARRAY_BUFFER (GL_TRIANGLES_ADJACENCY
+//                                                              over Positions)
+//   Lights             F64x4   32      lights           input  ((x, y, z, w), w = 0 directional)
+//   LightSides/Caps/Planes (item = light index): local, as VolumeSides/Caps/Planes, exact for that light
+//   SilhouetteReport   Utf8    1       bytes            -      (JSON: what each rule saved, the lights)
+// Frames: "input" is the input file's coordinates and units (node transforms
+// applied); "local" is the frame whose origin the Frame section holds, so a
+// record drawn with the camera's matrix times a translation by that origin
+// lands where the Positions drawn with the camera's matrix do; a light moves
+// into it as (x - w ox, y - w oy, z - w oz, w).
 //
 // READER: Reader::open() validates, in this order: size, magic, endianness,
 // version, header and table bounds, header checksum, file size (truncation),
