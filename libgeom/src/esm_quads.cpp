@@ -1,6 +1,6 @@
-// Extended-shadow-map silhouette quads (see geom/esm_quads.h). Seed
-// 000_4e3b0bad7883dc3e.txt, section 3.1 (which edges) and section 4.1 with
-// figures 3-5 (degenerate quad, extrusion vector, bevel plane).
+// Extended-shadow-map silhouette quads (see geom/esm_quads.h). Bujnak 2004
+// (Extended Shadow Maps), Sect. 3.1 (which edges) and Sect. 4.1 with
+// Fig. 3-5 (degenerate quad, extrusion vector, bevel plane).
 #include "geom/esm_quads.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // Quake 3 BSP import (IBSP version 46, as shipped in Debian's openarena-081-maps).
 //
-// Test bed of seed 004_3832d04cb6bd7525.txt (section 2): a map is a list of
+// The test bed of Arneson n.d. (Real-Time Shadows, Sect. 2): a map is a list of
 // models, model 0 the static world and the others brush models (doors, lifts);
 // each model is a range of faces of four types:
 //   1 polygon    convex planar polygon, triangulated by the map compiler:

@@ -164,7 +164,7 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
   if (auto meshes = doc.find("meshes"); meshes != doc.end()) {
     for (size_t m = 0; m < meshes->size(); ++m) {
       Json& mesh = (*meshes)[m];
-      // Required by glTF 2.0 (5.23): a mesh without them used to bake empty.
+      // Required by glTF 2.0 (5.23); a mesh without them would bake empty.
       if (!mesh.is_object()) refuse("mesh " + str(m) + " is not a JSON object");
       if (!mesh.contains("primitives") || !mesh["primitives"].is_array())
         refuse("mesh " + str(m) + ": \"primitives\" is missing or not an array");

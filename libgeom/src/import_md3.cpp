@@ -1,6 +1,6 @@
 // Quake 3 MD3 model import (IDP3 version 15, as in Debian's openarena-081-players).
 //
-// Seed 004_3832d04cb6bd7525.txt, section 2.5: a model is several triangle
+// Arneson n.d. (Real-Time Shadows), Sect. 2.5: a model is several triangle
 // surfaces, each stored once per animation frame. Imported: every surface at
 // frame ImportOptions::md3_frame (default 0, the first), vertex positions
 // int16 times the format's fixed-point scale 1/64 (MD3_XYZ_SCALE), in model
@@ -83,7 +83,7 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
     return false;
   }
   // What the surfaces claim, before anything is allocated: surfaces may share
-  // their triangle bytes, so a small file can claim millions (issue 15).
+  // their triangle bytes, so a small file can claim millions.
   uint64_t claimed_triangles = 0, claimed_vertices = 0;
   for (uint64_t at = uint64_t(surface_offset), s = 0; s < uint64_t(surfaces); ++s) {
     if (!span_inside(int64_t(at), 1, kSurfaceHeaderSize, in.size)) break;  // refused below

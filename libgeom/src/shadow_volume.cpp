@@ -1,6 +1,6 @@
 // Static shadow volumes for any mesh (see geom/shadow_volume.h for why the
-// stencil counts are right). Seeds: 004_3832d04cb6bd7525.txt section 4, the
-// z-fail baseline of 001_0225cc27c0669b01.txt section 5.
+// stencil counts are right). Arneson n.d. (Real-Time Shadows), Sect. 4, and
+// the z-fail baseline of Kenzel 2013, Sect. 5 (Everitt and Kilgard 2002).
 //
 // One walk over the edge table (double-sided, the default): each edge's live
 // faces are gathered once, the components joined (a union-find whose roots

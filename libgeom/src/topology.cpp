@@ -69,9 +69,9 @@ Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t 
   // count per smaller vertex (at lo + 2: after the scatter below, bucket v
   // is [start[v], start[v + 1])).
   std::vector<uint32_t> start(vn + 2, 0);
-  // Read only where written. The cross product alone (24 bytes a face, as
-  // main's unit normals were): its squared length is recomputed where read,
-  // so these and the keys together take no more than the 16-byte records did.
+  // Read only where written. The cross product alone (24 bytes a face, not
+  // normalized): its squared length is recomputed where read rather than
+  // stored beside it.
   std::unique_ptr<Vec3[]> normal(new Vec3[triangle_count]);
   for (size_t f = 0; f < triangle_count; ++f) {
     const uint32_t* v = indices + 3 * f;
