@@ -1,6 +1,7 @@
 // Half-edge summary (geom/halfedge.h): from the edge table where every vertex
-// is a single fan; else OpenMesh's add_face replayed on the edge table (below);
-// OpenMesh itself only in the reference function. OpenMesh types stay in this file.
+// is a single fan; else OpenMesh's add_face replayed on the edge table (below).
+// No OpenMesh here: the tests hold this equal to OpenMesh itself
+// (tests/oracle/openmesh_halfedge.cpp).
 //
 // Why the table suffices there: OpenMesh's add_face refuses a face only at a
 // complex edge (the edge already has a face on that side: an inconsistent or
@@ -12,61 +13,13 @@
 // the holes are exactly the cycles of boundary edges.
 #include "geom/halfedge.h"
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Core/Utils/Property.hh>
 #include <algorithm>
-#include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include "work_count.h"
 
 namespace geom {
-
-HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count) {
-  using Mesh = OpenMesh::TriMesh_ArrayKernelT<>;
-  HalfedgeSummary s;
-  Mesh mesh;
-  std::vector<Mesh::VertexHandle> vh(positions.size());
-  for (size_t i = 0; i < vh.size(); ++i)
-    vh[i] = mesh.add_vertex(Mesh::Point(positions[i].x, positions[i].y, positions[i].z));
-  // add_face reports each refusal on OpenMesh's process-wide error stream; the
-  // summary counts them instead. Silenced once (toggling it back on would race
-  // between threads baking in parallel).
-  std::vector<uint32_t> around(positions.size(), 0);  // faces added at each vertex (for the work count)
-  uint64_t steps = 0;
-  static std::once_flag silenced;
-  std::call_once(silenced, [] { omerr().disable(); });
-  for (size_t f = 0; f < triangle_count; ++f) {
-    const uint32_t* v = indices + 3 * f;
-    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
-      ++s.skipped_faces;
-      continue;
-    }
-    steps += 1 + around[v[0]] + around[v[1]] + around[v[2]];
-    if (mesh.add_face(vh[v[0]], vh[v[1]], vh[v[2]]).is_valid()) {
-      ++s.added_faces;
-      ++around[v[0]], ++around[v[1]], ++around[v[2]];
-    } else {
-      ++s.refused_faces;
-    }
-  }
-  OpenMesh::HPropHandleT<bool> visited;
-  mesh.add_property(visited);
-  for (auto h : mesh.halfedges()) mesh.property(visited, h) = false;
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || mesh.property(visited, h)) continue;
-    ++s.boundary_loops;
-    auto g = h;
-    do {
-      mesh.property(visited, g) = true;
-      g = mesh.next_halfedge_handle(g);
-      ++steps;
-    } while (g != h && !mesh.property(visited, g));
-  }
-  detail::count_work(steps);
-  return s;
-}
 
 namespace {
 
@@ -198,7 +151,7 @@ class AddFaceReplay {
         out_(vertex_count, kNone) {}
 
   // Adds face f (vertices v), as OpenMesh's add_face would: Lost where a
-  // link the replay needs is missing (then OpenMesh itself must answer).
+  // link the replay needs is missing (a bug: the summary is refused).
   Step add(size_t f, const uint32_t* v) {
     cached_ = 0;
     bool ok = true;
@@ -254,7 +207,7 @@ class AddFaceReplay {
   bool boundary_vertex(uint32_t v) const { return out_[v] == kNone || !face_[out_[v]]; }
   // A link the replay needs and does not have would mean the fans' ends went
   // wrong: never seen (the tests replay every mesh they have), but then
-  // OpenMesh itself answers rather than anything being read out of bounds.
+  // the summary is refused rather than anything being read out of bounds.
   bool lost(uint32_t h) const { return h >= hn_; }
 
   // Re-link patches: Added when every pair of old consecutive half-edges can
@@ -346,7 +299,7 @@ HalfedgeSummary replay_add_face(PositionSpan positions, const uint32_t* indices,
     }
     ++steps;
     const AddFaceReplay::Step step = replay.add(f, indices + 3 * f);
-    if (step == AddFaceReplay::Step::Lost) return summarize_halfedges(positions, indices, triangle_count);
+    if (step == AddFaceReplay::Step::Lost) throw std::logic_error("the half-edge summary lost a link of its replay (a bug)");
     ++(step == AddFaceReplay::Step::Added ? s.added_faces : s.refused_faces);
   }
   s.boundary_loops = replay.count_holes(steps);

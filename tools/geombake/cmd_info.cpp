@@ -9,6 +9,7 @@
 #include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/import.h"
+#include "geom/process.h"
 #include "geom/report.h"
 #include "geombake/command.h"
 #include "geombake/fault.h"
