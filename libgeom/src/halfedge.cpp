@@ -151,7 +151,7 @@ class AddFaceReplay {
         out_(vertex_count, kNone) {}
 
   // Adds face f (vertices v), as OpenMesh's add_face would: Lost where a
-  // link the replay needs is missing (then the summary is refused).
+  // link the replay needs is missing (a bug: the summary is refused).
   Step add(size_t f, const uint32_t* v) {
     cached_ = 0;
     bool ok = true;
@@ -206,8 +206,8 @@ class AddFaceReplay {
 
   bool boundary_vertex(uint32_t v) const { return out_[v] == kNone || !face_[out_[v]]; }
   // A link the replay needs and does not have would mean the fans' ends went
-  // wrong: never seen (the tests replay every mesh they have against OpenMesh
-  // itself), but then the summary is refused rather than anything read out of bounds.
+  // wrong: never seen (the tests replay every mesh they have), but then
+  // the summary is refused rather than anything being read out of bounds.
   bool lost(uint32_t h) const { return h >= hn_; }
 
   // Re-link patches: Added when every pair of old consecutive half-edges can
@@ -299,8 +299,7 @@ HalfedgeSummary replay_add_face(PositionSpan positions, const uint32_t* indices,
     }
     ++steps;
     const AddFaceReplay::Step step = replay.add(f, indices + 3 * f);
-    if (step == AddFaceReplay::Step::Lost)
-      throw std::logic_error("the half-edge summary lost a link of its replay (a bug)");
+    if (step == AddFaceReplay::Step::Lost) throw std::logic_error("the half-edge summary lost a link of its replay (a bug)");
     ++(step == AddFaceReplay::Step::Added ? s.added_faces : s.refused_faces);
   }
   s.boundary_loops = replay.count_holes(steps);
