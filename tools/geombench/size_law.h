@@ -1,6 +1,7 @@
 // tools/geombench/size_law.h: the law "error falls as the map grows", checked
 // per scene and technique over the map sizes of a run: error_visible at the
-// largest size at most half its error at 512 (where both were measured), and
+// largest size at most half its error at 512 (where both were measured), or
+// at most 0.01% (near zero, where halving is noise), and
 // no size worse than the next smaller one by more than 0.02 percentage points
 // (0.0002 of the visible pixels). A map that grows and gets worse has a
 // numerical defect (bias, precision), not aliasing.
