@@ -1,8 +1,9 @@
 #version 450 core
-// esm-soft: soft shadows from the extended shadow map's edge distance (000,
-// Sect. 3.2: the point-filtered depth and edge depth as flags, the bilinearly
-// interpolated edge distance, and "one dp3" for an attenuation function; here
-// the attenuation is the disc light's kernel of soft_light.frag): the distance
+// esm-soft: soft shadows from the extended shadow map's edge distance, this
+// project's own extension of 000 (render/src/esm_soft.cpp). From 000 Sect. 3.2:
+// the point-filtered depth and edge depth as flags and the bilinearly
+// interpolated edge distance; the paper's "one dp3" attenuation is the light's
+// distance falloff, not a penumbra, and is not used. Here the distance
 // in units of the penumbra's half width, estimated from the receiver's depth
 // behind the nearest texel's edge depth (the occluder), gives the light
 // fraction. On esm's light frames (lookup_faces.frag: a fitted frustum or six

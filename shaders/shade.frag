@@ -4,7 +4,8 @@
 // defines shadow_visibility(): 1 lit, 0 in shadow, in between where filtered.
 // Light: u_light is homogeneous (w = 1 point light at xyz, w = 0 a light at
 // infinity in direction xyz). Surfaces are two-sided: the visible side is lit
-// only when the light is on its side and, for a spot, inside the cone.
+// only when the light is on its side by more than the grazing epsilon
+// (N.L >= 1e-4) and, for a spot, inside the cone.
 // u_output 1 writes the mask (1 lit, 0 shadowed; the clear colour 0.5 marks no
 // geometry), 0 writes a shaded colour, 2 the light fraction itself (the soft
 // techniques' output, against geom/area_reference.h).
@@ -28,8 +29,13 @@ void main() {
   vec3 l = normalize(u_light.xyz - v_world * u_light.w);
   float ndl = dot(n, l);
   bool in_cone = u_light.w == 0.0 || u_spot_cos < -1.5 || dot(-l, u_spot_direction) >= u_spot_cos;
+  // Facing away, parallel or grazing within kGrazing: no direct light,
+  // whatever the map says (a map cannot resolve a face seen edge-on from the
+  // light). geom/shadow_reference.h counts |N.L| < kGrazing as uncertain. The
+  // lookup still runs in uniform control flow (some take derivatives).
+  const float kGrazing = 1e-4;
   float visibility = shadow_visibility(v_world, n);
-  if (u_ambient_only != 0 || !(ndl > 0.0) || !in_cone) visibility = 0.0;
+  if (u_ambient_only != 0 || !(ndl >= kGrazing) || !in_cone) visibility = 0.0;
   if (u_output == 2) {
     o_color = vec4(visibility, visibility, visibility, 1.0);
     return;

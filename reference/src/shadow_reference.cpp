@@ -40,6 +40,10 @@ void object_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// |N.L| below it: a parallel or grazing face, in the uncertain band (the
+// shading, shaders/shade.frag, gives it no direct light).
+constexpr double kGrazingCos = 1e-4;
+
 uint32_t find_root(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
@@ -134,7 +138,7 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
       const uint32_t own = objects[triangle];
       out.object[px] = own;
       m = 0;
-      if (std::fabs(cos_l) < 1e-4) grazing[px] = 1;
+      if (std::fabs(cos_l) < kGrazingCos) grazing[px] = 1;
       if (!(cos_l > 0)) {  // facing away: the object's own terminator
         out.pixel_class[px] = uint8_t(ShadowClass::Self), out.blocker[px] = own;
         continue;

@@ -114,6 +114,21 @@ void alley(BenchScene& b) {
   b.view = look({0, 1.7f, 1.5f}, {0, 1.2f, -30}, 0.1f, 500);
 }
 
+// A colonnade 200 m long along -z: a ground strip, two rows of round pillars
+// (16-sided, 0.35 m radius, 4 m tall) every 5 m under a flat roof beam per
+// pair, seen from one end at eye height: receivers from 0.5 m to 200 m.
+void colonnade(BenchScene& b) {
+  add_ground(b.scene, -8, 8, -205, 3);
+  for (int i = 0; i < 40; ++i) {
+    const float z = -5.0f * float(i) - 3;
+    for (float x : {-3.0f, 3.0f}) add_pipe(b.scene, {x, 0, z}, {x, 4, z}, 0.35f, 16);
+    add_box(b.scene, box_at({0, 4.15f, z}, {3.6f, 0.15f, 0.4f}));
+  }
+  b.hard = true;
+  b.default_view = false;
+  b.view = look({0.8f, 1.7f, 2}, {0.2f, 1.5f, -40}, 0.1f, 400);
+}
+
 // A raw Draco mesh file (the Stanford bunny of Draco's test data).
 // Scaled to a largest extent of 1, standing on y = 0, centred on the y axis.
 bool add_draco(geom::Scene& s, const std::string& path, std::string& error) {
@@ -238,7 +253,8 @@ void add_sphere(geom::Scene& s, int n, float radius, const float centre[3]) {
 }
 
 std::vector<std::string> scene_names() {
-  return {"default", "pipes", "jenga", "heavy", "wide-depth", "duelling", "grazing", "scan", "quake3"};
+  return {"default", "pipes", "jenga",     "heavy",  "wide-depth", "duelling",
+          "grazing", "scan",  "colonnade", "behind", "near-plane", "quake3"};
 }
 std::vector<std::string> quick_scene_names() { return {"default", "pipes", "grazing"}; }
 
@@ -298,6 +314,24 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
     b.light = directional({1, 0.0525f, 0.3f});
     b.hard = true;
     b.description = "blocks on a ground, directional light 3 degrees above it";
+  } else if (name == "colonnade") {
+    colonnade(b);
+    b.light = directional({1, 0.45f, 0.15f});
+    b.description = "200 m colonnade, sun from the side (wide depth range lit from the side)";
+  } else if (name == "behind") {
+    colonnade(b);
+    b.light = point({1.5f, 6, 9});
+    b.description = "200 m colonnade, point light behind and above the camera";
+  } else if (name == "near-plane") {
+    const std::string path = std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf";
+    geom::ImportResult r = geom::import_file(path);
+    if (!r.ok) return error = r.error, false;
+    b.scene = std::move(r.scene);
+    b.light = geom::light_from_scene(b.scene.lights);
+    b.default_view = false;
+    b.view = look({6, 3, 5}, {2.5f, 1.2f, -1}, 6, 100, 45);  // the near plane 6 of the 8 units to the wall
+    b.hard = true;
+    b.description = "data/default_scene.gltf, near plane 6 units from the eye, in the pipes' shadow";
   } else if (name == "scan") {
     add_ground(b.scene, -1.5f, 1.5f, -1.5f, 1.5f);
     if (!add_draco(b.scene, std::string(GEOMBENCH_TEST_DATA) + "/draco/bunny_gltf.drc", error)) return false;

@@ -21,8 +21,11 @@
 //    (a surface facing away from the light counts as shadowed).
 //  - `uncertain`: 1 for pixels within one pixel (8-neighbourhood) of a pixel of
 //    another mask value (shadow, silhouette and terminator boundaries), and for
-//    pixels whose surface grazes the light (|cos| < 1e-4), where a one-pixel or
-//    rounding difference between a rasterizer and the ray caster is legitimate.
+//    pixels whose surface grazes the light (|cos| < 1e-4, cos the cosine between
+//    the surface normal and the direction to the light: parallel and grazing
+//    faces), where a one-pixel or rounding difference between a rasterizer and
+//    the ray caster is legitimate. The shading (shaders/shade.frag) gives no
+//    direct light below cos 1e-4, so such faces are shadowed there as a whole.
 //  - the segment to a point light stops short of the light by 1e-4 of its
 //    length: a light touching the geometry (at a vertex, on a face) is not
 //    blocked by the surface it lies on.

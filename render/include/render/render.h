@@ -17,7 +17,7 @@
 //   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (seed 004)
 //   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, seed 001's baseline)
 //   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; seed 001 Sect. 6)
-//   esm_soft.cpp ........... esm-soft: the extended shadow map's distance under the disc (seed 000 Sect. 3.2)
+//   esm_soft.cpp ........... esm-soft: the extended shadow map's distance under the disc (own extension of 000)
 //   inspection.cpp ......... the overlay: topology problems, silhouette quads, the focus body
 //   platform.cpp ........... EGL (headless) and GLFW (window) glue, render/platform.h
 //
