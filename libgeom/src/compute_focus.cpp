@@ -46,8 +46,55 @@ const char* focus_fallback_name(FocusFallback f) {
   return "unknown";
 }
 
-bool compute_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene, const FocusOptions& options,
-                   FocusResult& out) {
+// R's candidate planes (V's faces and the receiver bounds) into fr.v_planes,
+// and S's corners in frustum_polytope's order into `box`.
+static void view_and_box(Frame& fr, const V3 corners[8], V3 box[8]) {
+  fr.v_planes.clear();
+  V3 vc(0, 0, 0);
+  for (int i = 0; i < 8; ++i) vc = vc + corners[i] * 0.125;
+  static const int face_corners[6][3] = {{0, 1, 2}, {4, 6, 5}, {0, 3, 7}, {1, 5, 6}, {0, 4, 5}, {3, 2, 6}};
+  for (const auto& f : face_corners) {
+    V3 n = cross(corners[f[1]] - corners[f[0]], corners[f[2]] - corners[f[0]]);
+    if (!(length(n) > 0)) continue;
+    Plane p = plane_through(corners[f[0]], normalize(n));
+    if (p.eval(vc) < 0) p = {-p.n, -p.d};
+    fr.v_planes.push_back(p);
+  }
+  fr.v_planes.insert(fr.v_planes.end(), fr.r_planes.begin(), fr.r_planes.end());
+  scene_corners(fr, box);
+}
+
+// Nothing visible to shadow: a finite matrix over S n L (or S) all the same.
+static void empty_focus(Frame& fr, const Light& light, FocusResult& out) {
+  set_fallback(out, FocusFallback::EmptyFocus,
+               "the focus body is empty: no visible point lies in the scene bounds and the light's frustum");
+  V3 c[8];
+  scene_corners(fr, c);
+  Polytope box;
+  frustum_polytope(c, box);
+  if (light.type == LightType::Spot && fr.receivers.empty())  // no receiver set the near plane's floor
+    fr.l_planes.push_back(plane_through(fr.light_pos + fr.light_axis * fr.light_near, fr.light_axis));
+  Polytope lit = box;
+  clip_polytope(lit, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
+  V3 axis_before = fr.light_axis;
+  if (!fr.directional && light.type == LightType::Point) fr.light_axis = fr.view_dir;
+  unique_vertices(lit.empty() ? box : lit, fr.eps, fr.h_verts);
+  M4 m;
+  bool ok = !lit.empty() && uniform_matrix(fr, m);
+  if (!ok) {  // the light's side of S: an orthographic view of S along the light's axis
+    V3 axis = fr.directional ? -fr.towards_light : fr.light_axis;
+    unique_vertices(box, fr.eps, fr.h_verts);
+    ok = fit(axis_frame(fr.eye, axis, fr.view_dir), fr.h_verts, false, m);
+  }
+  if (ok) std::copy(m.m, m.m + 16, out.matrix);
+  fr.h_verts.clear();
+  fr.light_axis = axis_before;
+}
+
+// The single-frustum computation (H, the light's kind, the matrix) into `out`,
+// which compute_focus has reset. False for invalid input.
+static bool single_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene,
+                         const FocusOptions& options, Frame& fr, FocusResult& out) {
   StageTimes* times = options.stage_times;
   using Clock = std::chrono::steady_clock;
   Clock::time_point mark = times ? Clock::now() : Clock::time_point();
@@ -58,164 +105,129 @@ bool compute_focus(const CameraMatrices& camera, const Light& light, const Focus
     times->*slot += std::chrono::duration<double>(now - mark).count();
     mark = now;
   };
+  if (!setup(camera, light, scene, options, fr, out)) {
+    out.fallback = FocusFallback::InvalidInput;
+    return false;
+  }
+  // The light's kind in the real camera's post-perspective space (Sect. 3).
+  if (fr.perspective) {
+    double w = fr.directional ? dot(fr.towards_light, fr.view_dir) : depth_of(fr, fr.light_pos);
+    double size = fr.directional ? 1.0 : length(fr.light_pos - fr.eye) + fr.scale;
+    out.light_kind = std::fabs(w) <= 1e-9 * size ? LightKind::Directional
+                     : w > 0                     ? LightKind::Point
+                                                 : LightKind::InvertedPoint;
+  } else {
+    out.light_kind = fr.directional ? LightKind::Directional : LightKind::Point;
+  }
+  out.psm_light_kind = out.light_kind;
+  lap(&StageTimes::setup);
+
+  // R = V n S n L (n receiver bounds).
+  V3 corners[8];
+  bool visible = view_frustum(fr, corners);
+  if (visible) {
+    frustum_polytope(corners, fr.receivers);
+    clip_polytope(fr.receivers, fr.s_planes.data(), fr.s_planes.size(), fr.eps, fr.scratch);
+    clip_polytope(fr.receivers, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
+    clip_polytope(fr.receivers, fr.r_planes.data(), fr.r_planes.size(), fr.eps, fr.scratch);
+    view_and_box(fr, corners, fr.box);
+  } else {
+    fr.receivers.clear();
+  }
+  // A point light's cube faces start from R before L's near plane cuts it.
+  fr.all_receivers = fr.receivers;
+  fr.range_planes = fr.l_planes.size();
+  if (!fr.directional && !fr.receivers.empty()) near_plane_cut(fr, light, options, out);
+  unique_vertices(fr.receivers, fr.eps, fr.r_verts);
+  lap(&StageTimes::receivers);
+  // H = conv(R u {l}) n S n L.
+  if (!fr.receivers.empty()) {
+    double reach = -HUGE_VAL;
+    if (fr.directional)
+      for (int i = 0; i < 8; ++i) reach = std::fmax(reach, dot(fr.box[i], fr.towards_light));
+    std::vector<Plane>& clip = fr.hull_clip;
+    clip.assign(fr.s_planes.begin(), fr.s_planes.end());
+    clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
+    V3 axis = fr.directional ? fr.towards_light : fr.light_axis;
+    if (!focus_by_planes(fr.r_verts, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, axis,
+                         fr.v_planes.data(), fr.v_planes.size(), clip.data(), clip.size(), fr.box, fr.eps,
+                         fr.hull_clip_planes, fr.body, fr.scratch, times))
+      focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach, clip.data(),
+                 clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
+  } else {
+    fr.body.clear();
+  }
+  if (times) mark = Clock::now();  // focus_hull timed itself
+  unique_vertices(fr.body, fr.eps, fr.h_verts);
+  fr.cone_cos = 1;
+  if (fr.h_verts.empty() || fr.r_verts.empty()) {
+    empty_focus(fr, light, out);
+    return true;
+  }
+  if (options.faces) {
+    index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
+  } else {
+    for (V3 p : fr.h_verts) out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
+  }
+  if (options.faces && out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
+    fr.h_verts.clear();
+    for (size_t i = 0; i + 2 < out.vertices.size(); i += 3)
+      fr.h_verts.push_back(V3(out.vertices[i], out.vertices[i + 1], out.vertices[i + 2]));
+  }
+  if (!fr.directional) {
+    for (int k = 0; k < 3; ++k) out.light_axis[k] = fr.light_axis[k];
+    // The map's near plane: H's nearest point. At the floor, H was cut there
+    // (casters next to the light, or receivers): say so. The cone H needs
+    // from the light: the cosine of its widest ray.
+    double nearest = HUGE_VAL;
+    for (V3 p : fr.h_verts) {
+      V3 d = p - fr.light_pos;
+      nearest = std::fmin(nearest, dot(d, fr.light_axis));
+      if (length(d) > fr.eps) fr.cone_cos = std::fmin(fr.cone_cos, dot(d, fr.light_axis) / length(d));
+    }
+    out.light_near = std::fmax(nearest, fr.light_near);
+    if (nearest <= fr.light_near + 4 * fr.eps) out.near_floor_cut = true;
+  }
+  lap(&StageTimes::faces);
+
+  M4 m;
+  bool done = method_matrix(fr, options, out, m);
+  if (done) std::copy(m.m, m.m + 16, out.matrix);
+  lap(&StageTimes::matrix);
+  return true;
+}
+
+bool compute_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene, const FocusOptions& options,
+                   FocusResult& out) {
   M4 id = M4::identity();
   std::copy(id.m, id.m + 16, out.matrix);
   out.method = FocusMethod::Uniform;
   out.fallback = FocusFallback::None;
   out.reason = "";
   out.light_kind = out.psm_light_kind = LightKind::Directional;
-  out.needs_cube_map = out.near_floor_cut = false;
+  out.needs_cube_map = out.near_floor_cut = out.cube = false;
   out.camera_shift = out.psm_near = out.psm_far = out.lispsm_n = out.light_near = 0;
   out.light_axis[0] = out.light_axis[1] = out.light_axis[2] = 0;
   out.vertices.clear();
   out.face_sizes.clear();
   out.face_indices.clear();
+  for (FocusFace& f : out.cube_faces) f = FocusFace(), std::copy(id.m, id.m + 16, f.matrix), std::copy(id.m, id.m + 16, f.focused);
   try {
     thread_local Frame fr;
-    if (!setup(camera, light, scene, options, fr, out)) {
-      out.fallback = FocusFallback::InvalidInput;
-      return false;
+    if (!single_focus(camera, light, scene, options, fr, out)) return false;
+    const double wide = options.cube_cone_degrees > 0 ? std::cos(0.5 * options.cube_cone_degrees * kPi / 180) : -2;
+    if (light.type == LightType::Point && (out.needs_cube_map || fr.cone_cos < wide)) {
+      using Clock = std::chrono::steady_clock;
+      Clock::time_point t0 = options.stage_times ? Clock::now() : Clock::time_point();
+      cube_focus(fr, options, out);
+      if (options.stage_times) options.stage_times->cube += std::chrono::duration<double>(Clock::now() - t0).count();
     }
-    // The light's kind in the real camera's post-perspective space (Sect. 3).
-    if (fr.perspective) {
-      double w = fr.directional ? dot(fr.towards_light, fr.view_dir) : depth_of(fr, fr.light_pos);
-      double size = fr.directional ? 1.0 : length(fr.light_pos - fr.eye) + fr.scale;
-      out.light_kind = std::fabs(w) <= 1e-9 * size ? LightKind::Directional
-                       : w > 0                     ? LightKind::Point
-                                                   : LightKind::InvertedPoint;
-    } else {
-      out.light_kind = fr.directional ? LightKind::Directional : LightKind::Point;
-    }
-    out.psm_light_kind = out.light_kind;
-    lap(&StageTimes::setup);
-
-    // R = V n S n L (n receiver bounds).
-    V3 corners[8];
-    bool visible = view_frustum(fr, corners);
-    if (visible) {
-      frustum_polytope(corners, fr.receivers);
-      clip_polytope(fr.receivers, fr.s_planes.data(), fr.s_planes.size(), fr.eps, fr.scratch);
-      clip_polytope(fr.receivers, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
-      clip_polytope(fr.receivers, fr.r_planes.data(), fr.r_planes.size(), fr.eps, fr.scratch);
-    } else {
-      fr.receivers.clear();
-    }
-    if (!fr.directional && !fr.receivers.empty()) near_plane_cut(fr, light, options, out);
-    unique_vertices(fr.receivers, fr.eps, fr.r_verts);
-    lap(&StageTimes::receivers);
-    // H = conv(R u {l}) n S n L.
-    if (!fr.receivers.empty()) {
-      double reach = -HUGE_VAL;
-      if (fr.directional)
-        for (int i = 0; i < 8; ++i) {
-          V3 s(i & 1 ? fr.s_planes[1].d : -fr.s_planes[0].d, i & 2 ? fr.s_planes[3].d : -fr.s_planes[2].d,
-               i & 4 ? fr.s_planes[5].d : -fr.s_planes[4].d);
-          reach = std::fmax(reach, dot(s, fr.towards_light));
-        }
-      std::vector<Plane>& clip = fr.hull_clip;
-      clip.assign(fr.s_planes.begin(), fr.s_planes.end());
-      clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
-      // R's candidate planes: V's faces and the receiver bounds.
-      fr.v_planes.clear();
-      V3 vc(0, 0, 0);
-      for (V3 c : corners) vc = vc + c * 0.125;
-      static const int face_corners[6][3] = {{0, 1, 2}, {4, 6, 5}, {0, 3, 7}, {1, 5, 6}, {0, 4, 5}, {3, 2, 6}};
-      for (const auto& f : face_corners) {
-        V3 n = cross(corners[f[1]] - corners[f[0]], corners[f[2]] - corners[f[0]]);
-        if (!(length(n) > 0)) continue;
-        Plane p = plane_through(corners[f[0]], normalize(n));
-        if (p.eval(vc) < 0) p = {-p.n, -p.d};
-        fr.v_planes.push_back(p);
-      }
-      fr.v_planes.insert(fr.v_planes.end(), fr.r_planes.begin(), fr.r_planes.end());
-      double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) lo[k] = -fr.s_planes[2 * k].d, hi[k] = fr.s_planes[2 * k + 1].d;
-      V3 box[8];
-      for (int i = 0; i < 8; ++i) {
-        int b = (i & 3) == 1 || (i & 3) == 2 ? 1 : 0, t = (i & 3) >= 2 ? 1 : 0;  // frustum_polytope's corner order
-        box[i] = V3(b ? hi[0] : lo[0], t ? hi[1] : lo[1], i >= 4 ? lo[2] : hi[2]);
-      }
-      V3 axis = fr.directional ? fr.towards_light : fr.light_axis;
-      if (!focus_by_planes(fr.r_verts, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, axis,
-                           fr.v_planes.data(), fr.v_planes.size(), clip.data(), clip.size(), box, fr.eps,
-                           fr.hull_clip_planes, fr.body, fr.scratch, times))
-        focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach, clip.data(),
-                   clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
-    } else {
-      fr.body.clear();
-    }
-    if (times) mark = Clock::now();  // focus_hull timed itself
-    unique_vertices(fr.body, fr.eps, fr.h_verts);
-    if (fr.h_verts.empty() || fr.r_verts.empty()) {
-      // Nothing visible to shadow. A finite matrix over S n L (or S) all the same.
-      set_fallback(out, FocusFallback::EmptyFocus,
-                   "the focus body is empty: no visible point lies in the scene bounds and the light's frustum");
-      double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) lo[k] = -fr.s_planes[2 * k].d, hi[k] = fr.s_planes[2 * k + 1].d;
-      V3 c[8];
-      for (int i = 0; i < 8; ++i) c[i] = V3(i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]);
-      frustum_polytope(c, fr.body);
-      if (light.type == LightType::Spot && fr.receivers.empty())  // no receiver set the near plane's floor
-        fr.l_planes.push_back(plane_through(fr.light_pos + fr.light_axis * fr.light_near, fr.light_axis));
-      Polytope lit = fr.body;
-      clip_polytope(lit, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
-      if (!fr.directional && light.type == LightType::Point) fr.light_axis = fr.view_dir;
-      unique_vertices(lit.empty() ? fr.body : lit, fr.eps, fr.h_verts);
-      M4 m;
-      bool ok = !lit.empty() && uniform_matrix(fr, m);
-      if (!ok) {  // the light's side of S: an orthographic view of S along the light's axis
-        V3 axis = fr.directional ? -fr.towards_light : fr.light_axis;
-        unique_vertices(fr.body, fr.eps, fr.h_verts);
-        ok = fit(axis_frame(fr.eye, axis, fr.view_dir), fr.h_verts, false, m);
-      }
-      if (ok) std::copy(m.m, m.m + 16, out.matrix);
-      fr.h_verts.clear();
-      return true;
-    }
-    if (options.faces) {
-      index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
-    } else {
-      for (V3 p : fr.h_verts) out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
-    }
-    if (options.faces && out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
-      fr.h_verts.clear();
-      for (size_t i = 0; i + 2 < out.vertices.size(); i += 3)
-        fr.h_verts.push_back(V3(out.vertices[i], out.vertices[i + 1], out.vertices[i + 2]));
-    }
-    if (!fr.directional) {
-      for (int k = 0; k < 3; ++k) out.light_axis[k] = fr.light_axis[k];
-      // The map's near plane: H's nearest point. At the floor, H was cut there
-      // (casters next to the light, or receivers): say so.
-      double nearest = HUGE_VAL;
-      for (V3 p : fr.h_verts) nearest = std::fmin(nearest, dot(p - fr.light_pos, fr.light_axis));
-      out.light_near = std::fmax(nearest, fr.light_near);
-      if (nearest <= fr.light_near + 4 * fr.eps) out.near_floor_cut = true;
-    }
-    lap(&StageTimes::faces);
-
-    M4 m;
-    bool done = false;
-    if (options.method != FocusMethod::Uniform && !fr.perspective) {
-      set_fallback(out, FocusFallback::OrthographicCamera,
-                   "the camera is orthographic: there is no perspective to warp, uniform used");
-    } else if (options.method == FocusMethod::Psm) {
-      done = psm_matrix(fr, options, out, m);
-      if (done) out.method = FocusMethod::Psm;
-    } else if (options.method == FocusMethod::Lispsm) {
-      done = lispsm_matrix(fr, options, out, m);
-      if (done) out.method = FocusMethod::Lispsm;
-    }
-    if (!done) {
-      out.method = FocusMethod::Uniform;
-      done = uniform_matrix(fr, m);
-    }
-    if (done) std::copy(m.m, m.m + 16, out.matrix);
-    lap(&StageTimes::matrix);
     return true;
   } catch (...) {  // allocation failure: never past the library boundary
     std::copy(id.m, id.m + 16, out.matrix);
     out.fallback = FocusFallback::InvalidInput;
     out.reason = "out of memory";
+    out.cube = false;
     return false;
   }
 }

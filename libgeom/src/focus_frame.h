@@ -31,6 +31,13 @@ struct Frame {
   Polytope receivers, body, scratch;
   std::vector<V3> r_verts, h_verts, hull_points;
   double eps = 0, scale = 1;
+  V3 box[8];                // S's corners in frustum_polytope's order
+  Polytope all_receivers;   // point, spot: R before L's near plane cut it
+  size_t range_planes = 0;  // l_planes before the near plane: the range (and a spot's cone)
+  double cone_cos = 1;      // point, spot: the cosine of the widest ray of H from the light around its axis
+  // cube_faces.cpp's working memory
+  std::vector<Plane> face_planes, face_clip;
+  Polytope face_receivers;
 };
 
 inline void set_fallback(FocusResult& out, FocusFallback f, const char* reason) {
@@ -54,6 +61,16 @@ inline V3 box_centre(const std::vector<V3>& pts) {
   return (lo + hi) * 0.5;
 }
 
+// S's eight corners in frustum_polytope's order (0-3 at S's largest z, then the smallest).
+inline void scene_corners(const Frame& fr, V3 out[8]) {
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) lo[k] = -fr.s_planes[2 * k].d, hi[k] = fr.s_planes[2 * k + 1].d;
+  for (int i = 0; i < 8; ++i) {
+    int b = (i & 3) == 1 || (i & 3) == 2 ? 1 : 0, t = (i & 3) >= 2 ? 1 : 0;
+    out[i] = V3(b ? hi[0] : lo[0], t ? hi[1] : lo[1], i >= 4 ? lo[2] : hi[2]);
+  }
+}
+
 // focus_frame.cpp
 // Fills `fr` from the inputs; false (with the reason in `out`) for invalid input.
 bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const FocusOptions& opt, Frame& fr,
@@ -75,6 +92,16 @@ M4 axis_frame(V3 origin, V3 axis, V3 hint);
 bool uniform_matrix(const Frame& fr, M4& out);
 bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result);
 bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result);
+// The matrix of opt.method with its fallbacks (uniform where the camera is
+// orthographic or the method cannot warp); sets out.method. False only when
+// not even the uniform fit is finite.
+bool method_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result);
+
+// cube_faces.cpp
+// Point light: the six faces of out.cube_faces fitted to H's part in each
+// direction (geom/focus.h FocusFace), from fr.all_receivers; sets out.cube.
+// Uses fr's h_verts, r_verts, light_axis and light_near as working memory.
+void cube_focus(Frame& fr, const FocusOptions& opt, FocusResult& out);
 
 }  // namespace focus
 }  // namespace geom

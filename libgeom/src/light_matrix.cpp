@@ -265,5 +265,24 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
   return fit(chain, fr.h_verts, false, result);
 }
 
+bool method_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
+  bool done = false;
+  if (opt.method != FocusMethod::Uniform && !fr.perspective) {
+    set_fallback(out, FocusFallback::OrthographicCamera,
+                 "the camera is orthographic: there is no perspective to warp, uniform used");
+  } else if (opt.method == FocusMethod::Psm) {
+    done = psm_matrix(fr, opt, out, result);
+    if (done) out.method = FocusMethod::Psm;
+  } else if (opt.method == FocusMethod::Lispsm) {
+    done = lispsm_matrix(fr, opt, out, result);
+    if (done) out.method = FocusMethod::Lispsm;
+  }
+  if (!done) {
+    out.method = FocusMethod::Uniform;
+    done = uniform_matrix(fr, result);
+  }
+  return done;
+}
+
 }  // namespace focus
 }  // namespace geom

@@ -30,7 +30,8 @@ const char* kFocusHelp =
     "usage: geombake focus FRAME.json\n"
     "  Prints, as JSON, the focus body H and the world-to-shadow-clip matrix (column-major)\n"
     "  of a camera, a light and the scene bounds: method, fallback (null or the reason),\n"
-    "  light_kind, camera_shift, focus_vertices, focus_faces, matrix.\n";
+    "  light_kind, camera_shift, focus_vertices, focus_faces, matrix, and for a point light among the\n"
+    "  receivers the six fitted cube faces (faces: matrix, near, far, empty, method, focused).\n";
 
 struct BadFrame : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -185,7 +186,19 @@ int run_focus(const std::vector<std::string>& argv) {
     }
     o += "],\n  \"matrix\": [";
     for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(r.matrix[i]);
-    o += "]\n}\n";
+    // A point light's six fitted cube faces (+X -X +Y -Y +Z -Z); [] when one map serves.
+    o += "],\n  \"faces\": [";
+    for (int f = 0; r.cube && f < 6; ++f) {
+      const geom::FocusFace& face = r.cube_faces[f];
+      o += std::string(f ? ",\n" : "\n") + "    {\"matrix\": [";
+      for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(face.matrix[i]);
+      o += "], \"near\": " + num(face.near) + ", \"far\": " + num(face.far) +
+           ", \"empty\": " + (face.empty ? "true" : "false") + ", \"method\": " +
+           str(geom::focus_method_name(face.method)) + ", \"focused\": [";
+      for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(face.focused[i]);
+      o += "]}";
+    }
+    o += r.cube ? "\n  ]\n}\n" : "]\n}\n";
     std::fwrite(o.data(), 1, o.size(), stdout);
     return 0;
   } catch (const std::exception& e) {  // nlohmann parse errors and BadFrame

@@ -9,6 +9,7 @@
 #include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/import.h"
+#include "geom/process.h"
 #include "geom/report.h"
 #include "geombake/bake_plan.h"
 #include "geombake/command.h"

@@ -107,7 +107,7 @@ enum class FocusFallback : uint8_t {
   LightTooClose,       // psm: the post-perspective light is too close to H for one frustum: uniform used
   OrthographicCamera,  // the camera has no perspective: psm / lispsm equal uniform, uniform used
   LightInsideView,     // a point light lies among the receivers: one map covers only the half-space facing
-                       // them; render cube faces (focus_cube_faces) for this light (needs_cube_map is set)
+                       // them; render the six fitted faces (FocusResult::cube_faces; needs_cube_map is set)
   DegenerateScene,     // scene bounds of zero size on some axis: that axis is inflated to 1e-6 of the largest
                        // extent or 1e-9 of the largest coordinate, whichever is more (min > max: swapped)
   EmptyFocus,          // H is empty (nothing visible is in the scene and the light): matrix covers S n L instead
@@ -124,6 +124,7 @@ struct FocusStageTimes {
   double clip = 0;       // S cut by the half-spaces of conv(R u {l}) and L
   double faces = 0;      // H's faces for the output: the indexed polygons (a CGAL 3D hull when they do not close)
   double matrix = 0;     // the light's kind, the shift, the matrix of the method
+  double cube = 0;       // point light: the six faces fitted (FocusResult::cube_faces)
 };
 
 struct FocusOptions {
@@ -149,6 +150,38 @@ struct FocusOptions {
   // Point, spot: the floor of the light's near plane; 0 = automatic (1e-3 of
   // the farthest receiver's distance along the light's axis).
   double light_near = 0;
+  // Point light: the six cube faces (FocusResult::cube_faces) are fitted when
+  // the light is among the receivers (needs_cube_map), and also when H needs a
+  // cone wider than this full angle (degrees) from the light, where one
+  // frustum would spread its texels thin at the sides. 0: only the first case.
+  double cube_cone_degrees = 0;
+};
+
+// One 90-degree face of a point light's cube (FocusResult::cube_faces), fitted
+// to the part of H the face looks at: H_i = conv(R_i u {l}) n S n L_i, where
+// R_i is the receiver region in the face's direction (the closed square
+// pyramid from the light around the face's axis, as focus_cube_face_of
+// assigns directions) and L_i that pyramid beyond the near floor. A caster
+// that shadows a receiver lies on the segment from it to the light, in the
+// same direction, so face i's map holds every occluder of its receivers
+// (Stamminger and Drettakis 2002, Sect. 1: an omnidirectional light as
+// several maps, each focused as a spot light's).
+struct FocusFace {
+  bool empty = true;  // no receiver is seen in this direction: nothing to render (matrices: identity)
+  double near = 0;    // distances along the face's axis: H_i's nearest point (at least the floor) ...
+  double far = 0;     // ... and farthest point; 0 < near < far when not empty
+  // The 90-degree face of focus_cube_faces (OpenGL's cube-map orientation)
+  // with this near and far: H_i maps into the unit cube.
+  double matrix[16];
+  // The requested method's matrix for this face (geom/focus.h's psm, lispsm or
+  // uniform of H_i, the face's pyramid as the light frustum): H_i maps into the
+  // unit cube, tighter than `matrix`. Depth as FocusResult::matrix.
+  double focused[16];
+  FocusMethod method = FocusMethod::Uniform;  // the method `focused` used (uniform where warping cannot help)
+  FocusFallback fallback = FocusFallback::None;
+  const char* reason = "";  // static text: why this face fell back ("" when none)
+  double lispsm_n = 0;      // lispsm: the face's warp distance (0 = no warp)
+  double psm_near = 0;      // psm: the face's virtual near distance
 };
 
 struct FocusResult {
@@ -175,6 +208,14 @@ struct FocusResult {
   std::vector<uint32_t> face_sizes;
   std::vector<uint32_t> face_indices;
   size_t vertex_count() const { return vertices.size() / 3; }
+  // Point light: true when the six faces below are fitted (needs_cube_map, or
+  // H wider than FocusOptions::cube_cone_degrees). Order: +X, -X, +Y, -Y, +Z, -Z.
+  // A point of H at least a face's near from the light along the face's axis
+  // lies, in the face focus_cube_face_of gives its direction, inside both of
+  // that face's matrices' unit cube; points nearer the light than the floor
+  // are not in any map (near_floor_cut says so when they exist).
+  bool cube = false;
+  FocusFace cube_faces[6];
 };
 
 // The whole per-frame computation: H, the light's kind, the shift and the
