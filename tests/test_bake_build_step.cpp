@@ -313,7 +313,8 @@ TEST(BuildStep, DirectoryWalkBakesArchives) {
   EXPECT_TRUE(has(i.out, "maps.pk3:maps/small.bsp")) << i.out;
 }
 
-// An OBJ without a face is an error, as an empty OFF, PLY or STL is.
+// An input without a face (an empty OBJ, one of vertices or lines only) is an
+// error of the bake, as an empty OFF, PLY or STL is: nothing to bake.
 TEST(BuildStep, ObjWithoutFaceIsAnError) {
   const fs::path d = scratch("obj");
   const std::vector<std::string> texts = {"", "# nothing\n", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "v 0 0 0\nv 1 0 0\nl 1 2\n",

@@ -1,6 +1,8 @@
 // One input of `geombake bake` (bake_job.h).
 #include "geombake/bake_job.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 
 #include "geombake/bake_output.h"
@@ -45,6 +47,15 @@ std::string over_estimate(const Job& job, const geom::Scene& scene, const geom::
          std::to_string(need) + " bytes, over the limit of " + std::to_string(max_memory) + " (--max-memory)";
 }
 
+// A plain mesh format (.obj .off .ply .stl), whose file without a face holds
+// nothing at all; a glTF without a mesh may still be a valid scene (cameras,
+// lights), and is baked to a container without geometry.
+bool is_plain_mesh_name(const std::string& path) {
+  std::string ext = path.substr(std::min(path.size(), path.find_last_of('.')));
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl";
+}
+
 Outcome fail(std::string error, ErrorKind kind) {
   Outcome o;
   o.error = std::move(error);
@@ -76,6 +87,8 @@ Outcome bake_unguarded(Job& job, const geom::BakeOptions& options, const geom::I
                        const JobLimits& limits, const WriteOptions& write) {
   geom::ImportResult imported = geom::import_file(job.input, import_options);
   if (!imported.ok) return fail(imported.error, classify_import_error(job.input, imported.error));
+  if (imported.scene.triangle_count() == 0 && is_plain_mesh_name(job.input))  // an OBJ as an empty OFF, PLY or STL
+    return fail(job.input + ": no face: nothing to bake (the file holds no triangle)", ErrorKind::Malformed);
   if (limits.max_memory) {  // the estimate refuses at once what cannot fit; the budget (fault.h) bounds the rest
     std::string over = over_estimate(job, imported.scene, options, limits.max_memory);
     if (!over.empty()) return fail(over, ErrorKind::LimitMemory);
