@@ -53,7 +53,7 @@ bool cube_passes(Frame& f) {
     set(p, name.c_str(), at(glm::make_mat4(faces[i]), s.origin));
   }
   set(p, "u_light_position", glm::vec3(glm::dvec3(L) - s.origin));
-  f.timer.begin(f.focused ? "cube map (focus: point light among the receivers)" : "cube map");
+  f.timer.begin("cube map");
   glBindFramebuffer(GL_FRAMEBUFFER, s.cube.fbo);
   glViewport(0, 0, n, n);
   const float far_value = 3.0e38f;
@@ -64,6 +64,7 @@ bool cube_passes(Frame& f) {
   f.timer.end();
   f.shadow_texture = s.cube.color;
   f.lookup = "lookup_cube.frag";
+  f.projection = "cube map";
   return true;
 }
 
