@@ -28,6 +28,8 @@ const char* focus_fallback_name(FocusFallback f) {
       return "none";
     case FocusFallback::NearLimited:
       return "near_limited";
+    case FocusFallback::WarpNoGain:
+      return "warp_no_gain";
     case FocusFallback::ParallelLight:
       return "parallel_light";
     case FocusFallback::LightTooClose:
