@@ -1,5 +1,5 @@
 // Silhouette bake throughput, one core, against meshoptimizer's adjacency and
-// an OpenMesh build in the same run (issue 14).
+// an OpenMesh build in the same run.
 //
 // The table (BM_Bake*, BM_Shared*, BM_Meshopt*, BM_OpenMesh*, BM_Cli* on each mesh,
 // then a summary of ratios and peak bytes per triangle, and the bake split into

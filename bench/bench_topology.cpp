@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geom/import.h"
+#include "geom/process.h"
 #include "geom/report.h"
 #include "geom/topology.h"
 #include "geom/weld.h"

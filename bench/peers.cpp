@@ -9,6 +9,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <cstdio>
 
+#include "geom/process.h"
 #include "geom/report.h"
 
 namespace geom_bench {

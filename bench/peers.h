@@ -1,5 +1,5 @@
 // bench/peers.h: the peers the bake is measured against, in one place for
-// bench_bake, bench_topology and geombench's bake table (issue 14).
+// bench_bake, bench_topology and geombench's bake table.
 //   meshopt_adjacency:  meshoptimizer's meshopt_generateAdjacencyIndexBuffer on
 //                       raw triangles (it remaps by position itself);
 //   openmesh_trimesh:   an OpenMesh TriMesh built from welded triangles;

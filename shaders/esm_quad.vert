@@ -1,8 +1,7 @@
 #version 450 core
-// Extended-shadow-map silhouette quads (seed 000_4e3b0bad7883dc3e.txt, section
-// 4.1, figures 3-5) from the static records of geom/esm_quads.h. The CPU
-// reference is libgeom/src/extrude.cpp (esm_corners): the same math, in the
-// same order.
+// Extended-shadow-map silhouette quads (Bujnak 2004, Sect. 4.1, Figs. 3-5)
+// from the static records of geom/esm_quads.h. The CPU reference is
+// libgeom/src/extrude.cpp (esm_corners): the same math, in the same order.
 //
 // Draw: glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, quad_count), one
 // instance per EsmQuad (stride 36, divisor 1). Corner gl_VertexID: 0 = p0 on
@@ -11,14 +10,35 @@
 // when behind; len = u_extrude_scale * its clip-space w. Only silhouette edges
 // (light in front of one side, behind the other) give a quad with area.
 //
+// GL state: face culling off (a quad's winding depends on the light's side),
+// no depth or stencil test needed by the quads themselves; the render target
+// and blending are the fragment shader's (esm_edges.frag: MAX blending on a
+// float target). The light matrix is the shadow map's own, any projection.
+//
+// u_extrude_scale for any light matrix M = u_light_view_proj (perspective,
+// orthographic, or warped: perspective shadow maps, LiSPSM): for quads t
+// texels wide on an N-texel map,
+//     u_extrude_scale = 2 t / (N s),
+//     s = min(length(vec3(M[0][0], M[1][0], M[2][0])),
+//             length(vec3(M[0][1], M[1][1], M[2][1])))
+// (GLSL's M[column][row]: the x and y rows of M's upper 3 x 3), the least
+// clip-space x or y that a unit length of the local frame can move at w = 1.
+// Why it holds for every M: the corner moves by len = u_extrude_scale * w along
+// the unit vector q, so its clip x moves by (M's x row . q) len and its
+// normalized device x (clip / w) by u_extrude_scale (M's x row . q), whatever
+// w is at the corner: the w factor cancels the perspective division, which is
+// why the scale is per unit of w. Along the shorter row that is 2 t / N, t
+// texels (2 / N of device coordinates per texel); no direction moves further
+// than t times (longer row / shorter row) texels. M's w row also changes w by
+// (M's w row . q) len, a relative change of order len / distance: second order
+// for quads a few texels wide. render/src/light_fit.cpp projection_scale() is s.
+//
 // Uniforms:
 //   mat4 u_light_view_proj    local frame (geom/face_planes.h) -> the shadow
 //                             map's clip space
 //   vec4 u_light              the light in the local frame: (x, y, z, 1) point,
 //                             (x, y, z, 0) directional towards (x, y, z)
-//   float u_extrude_scale     quad width per unit of clip w; for a width of t
-//                             texels of an N-texel map with projection scale s
-//                             (clip x per unit of length at w = 1): 2 t / (N s)
+//   float u_extrude_scale     quad width per unit of clip w: 2 t / (N s), above
 //   samplerBuffer u_planes    the quads' `planes`, an RGBA32F texture buffer
 // Outputs:
 //   v_side      +1 on the side whose plane faces the light, -0.5 on the other,

@@ -11,14 +11,49 @@
 //   caps   u_caps = true   glDrawArraysInstanced(GL_TRIANGLES, 0, 6, n)
 //          record SvCap, stride 40: a (loc 0), b (loc 1), c (loc 2), plane (loc 3);
 //          location 4 unused.
-// Depth-fail: sides + caps; depth-pass: sides only. Use a projection with an
-// infinite far plane (or GL_DEPTH_CLAMP). Stencil: see geom/shadow_volume.h.
+// Depth-fail: sides + caps; depth-pass: sides only.
 //
+// GL state an engine sets (render/src/shadow_volume.cpp does exactly this):
+//   - The scene's depth is in the depth buffer first, drawn with
+//     glEnable(GL_POLYGON_OFFSET_FILL); glPolygonOffset(0.0, -8.0): the
+//     receivers pulled 8 units of the depth buffer's resolution TOWARDS the
+//     camera (negative units). Why: each near cap lies exactly on its lit face,
+//     and side quads start on the faces' edges, so without it a surface is
+//     shadowed by its own cap wherever rounding puts the cap in front
+//     (a fifth of the pixels of data/default_scene.gltf: examples/engine_sample
+//     --no-offset); moreover the volumes are drawn in
+//     the local frame (u_view_proj includes the frame's origin) while the
+//     scene is drawn in input coordinates, so the two depths of one point
+//     differ by float rounding of the translation. The offset is constant
+//     (factor 0): a slope term would also push grazing receivers out of volumes
+//     that really contain them. Keep the same offset in the lit pass that
+//     reads the stencil with glDepthFunc(GL_EQUAL), and none while drawing volumes.
+//   - While drawing volumes: glDepthMask(GL_FALSE), glColorMask all GL_FALSE,
+//     glDepthFunc(GL_LESS), face culling off (both faces are counted),
+//     glEnable(GL_STENCIL_TEST), glStencilFunc(GL_ALWAYS, 0, 0xff),
+//     glStencilMask(0xff), a stencil buffer of 8 bits (DEPTH24_STENCIL8), cleared to 0.
+//   - Depth-fail (camera possibly inside a volume):
+//       glStencilOpSeparate(GL_BACK,  GL_KEEP, GL_INCR_WRAP, GL_KEEP);
+//       glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_DECR_WRAP, GL_KEEP);
+//     depth-pass (camera outside every volume):
+//       glStencilOpSeparate(GL_FRONT, GL_KEEP, GL_KEEP, GL_INCR_WRAP);
+//       glStencilOpSeparate(GL_BACK,  GL_KEEP, GL_KEEP, GL_DECR_WRAP);
+//     with counter-clockwise front faces (GL's default glFrontFace(GL_CCW)).
+//   - The far corners lie at infinity (w = 0): the camera projection must not
+//     clip them. Either an infinite far plane (Arneson, Sect. 4.1: the limit of
+//     the GL projection as far -> infinity) or glEnable(GL_DEPTH_CLAMP) during
+//     the volume draws (what the viewer does; its projection is infinite too).
+//   - Then lit shading where the count is zero: glStencilFunc(GL_EQUAL, 0, 0xff),
+//     glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP), glDepthFunc(GL_EQUAL), the offset above.
 // Uniforms:
-//   mat4 u_view_proj          local frame (geom/face_planes.h) -> camera clip space
+//   mat4 u_view_proj          local frame (geom/face_planes.h) -> camera clip space:
+//                             the camera's view-projection times a translation by
+//                             the baked file's `frame` origin (local = input - origin)
 //   vec4 u_light              the light in the local frame: (x, y, z, 1) a point
 //                             light, (x, y, z, 0) a directional light lying at
-//                             infinity towards (x, y, z)
+//                             infinity towards (x, y, z); from input coordinates
+//                             (x, y, z, w) as (x - w ox, y - w oy, z - w oz, w)
+//                             (geom/extrude.h to_local_light)
 //   bool u_caps               which record kind this draw reads
 //   samplerBuffer u_planes    the volume's `planes`, an RGBA32F texture buffer
 //                             (texture unit set by the application)

@@ -3,7 +3,7 @@
 //     edge in the neighbour chosen by the documented rule (checked by brute
 //     force over all triangles), the triangle's own opposite vertex at a
 //     boundary;
-//   * the geometry-shader silhouette test of seed 001 section 3.2.1 (signs of
+//   * the geometry-shader silhouette test of Kenzel 2013, Sect. 3.2.1 (signs of
 //     the projected triangle and its neighbour differ) finds exactly the
 //     silhouette edges of a closed mesh for random viewpoints, and every
 //     boundary edge of an open one;
@@ -65,7 +65,7 @@ TEST(Adjacency, FollowsTheDocumentedRule) {
   }
 }
 
-// det of the projected triangle (homogeneous, seed 001 eq. 3.4): the sign of
+// det of the projected triangle (homogeneous, Kenzel 2013, Sect. 3.2.1: det[p1 p2 p3]): the sign of
 // the projected winding seen from the eye e.
 double winding_sign(const float* p, const std::array<double, 3>& e, uint32_t a, uint32_t b, uint32_t c) {
   double m[3][3];

@@ -1,4 +1,5 @@
-// Bad-input sweep of the geombake CLI (MISSION.md "Bad input", issue 8 part 3).
+// Bad-input sweep of the geombake CLI: every hostile input gets "Error: FILE:
+// cause", a non-zero exit and no output, never a crash, a hang or silence.
 //
 // The law, checked on every input below by running the real binary
 // (`geombake bake FILE -o DIR/out.gbake --json`) as a child process:

@@ -30,6 +30,7 @@
 #include "geom/adjacency.h"
 #include "geom/atomic_file.h"
 #include "geom/bake.h"
+#include "geom/baked_file.h"
 #include "geom/baked_reader.h"
 #include "geom/baked_writer.h"
 #include "geom/extrude.h"
@@ -851,6 +852,33 @@ TEST(BakeRealFile, DracoBoxGltf) {
   EXPECT_EQ(f.reader().find(SectionType::Indices)->count, 36u);
 }
 
+// The library's bake_file and `geombake bake` of one input write the same
+// bytes: both store the input's base name (no path of the machine), and the
+// importer's warnings with it; a name the caller gives is stored instead.
+TEST(BakeRealFile, LibraryBakeIsTheCliBake) {
+  const std::string dir = temp_dir("libcli");
+  write_text(dir + "/warned.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nl 1 2\nf 1 2 3\nf 1 3 4\n");  // a line: a warning
+  const std::vector<std::string> inputs = {kBoxObj, kDracoBox, std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf",
+                                           dir + "/warned.obj"};
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    SCOPED_TRACE(inputs[i]);
+    const std::string lib = dir + "/lib" + std::to_string(i) + ".gbake", cli = dir + "/cli" + std::to_string(i) + ".gbake";
+    const geom::BakeResult r = geom::bake_file(inputs[i], lib);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(r.report.file, geom::stored_name(inputs[i]));
+    const CliRun run = geombake(dir, "bake -q '" + inputs[i] + "' -o '" + cli + "'");
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(read_bytes(lib), read_bytes(cli));
+  }
+  const std::string named = dir + "/named.gbake";
+  const geom::BakeResult r = geom::bake_file(kBoxObj, named, {}, {}, "asset/box.obj");
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.report.file, "asset/box.obj");
+  EXPECT_EQ(geom::stored_name("/a/b/pig.off"), "pig.off");
+  EXPECT_EQ(geom::stored_name("pig.off"), "pig.off");
+  EXPECT_EQ(geom::stored_name("/x/Maps.PK3:maps/q3dm1.bsp"), "Maps.PK3:maps/q3dm1.bsp");
+}
+
 TEST(BakeRealFile, FailedBakeLeavesNoFile) {
   std::string dir = temp_dir("failedbake");
   write_text(dir + "/bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");  // vertex 9 does not exist
@@ -1029,23 +1057,47 @@ TEST(BakeRealFile, SceneLightsOfTheDefaultScene) {
   }
 }
 
-// The reader is one header an engine can take alone: it includes nothing but
-// the C++ standard library, and POSIX headers only inside the block that
-// File::map() needs, where they exist (and this file includes it first, so it
-// compiles alone).
-TEST(BakedReaderHeader, StandardLibraryOnly) {
-  std::vector<unsigned char> text = read_bytes(std::string(GEOM_SOURCE_DIR) + "/libgeom/include/geom/baked_reader.h");
+// The includes of `header` (libgeom/include/geom/...), in order.
+std::vector<std::string> includes_of(const std::string& header) {
+  std::vector<unsigned char> text = read_bytes(std::string(GEOM_SOURCE_DIR) + "/libgeom/include/geom/" + header);
   std::string src(text.begin(), text.end());
-  const std::vector<std::string> allowed = {"<cstddef>",    "<cstdint>", "<cstdio>", "<cstring>",
-                                            "<filesystem>", "<string>",  "<vector>"};
-  const std::vector<std::string> posix = {"<fcntl.h>", "<sys/mman.h>", "<sys/stat.h>", "<unistd.h>"};
+  std::vector<std::string> out;
+  for (size_t at = src.find("#include"); at != std::string::npos; at = src.find("#include", at + 1)) {
+    const size_t end = src.find('\n', at);
+    out.push_back(src.substr(at + 9, end - at - 9));
+  }
+  return out;
+}
+
+// The reader is what an engine can take alone (geom::reader): baked_reader.h
+// and baked_records.h include nothing but the C++ standard library, and none
+// of it for files (no <filesystem>, no POSIX header: reading from memory needs
+// none); this file includes the reader first, so it is seen to compile alone.
+TEST(BakedReaderHeader, StandardLibraryOnly) {
+  const std::vector<std::string> allowed = {"<cstddef>", "<cstdint>", "<cstdio>", "<cstring>", "<string>", "<vector>"};
+  for (const char* header : {"baked_reader.h", "baked_records.h"}) {
+    const std::vector<std::string> included = includes_of(header);
+    EXPECT_FALSE(included.empty()) << header;
+    for (const std::string& what : included)
+      EXPECT_NE(std::find(allowed.begin(), allowed.end(), what), allowed.end()) << header << " includes " << what;
+  }
+}
+
+// Reading a file is the companion header's (geom/baked_file.h): the reader,
+// the standard library, and POSIX headers only inside the block File::map() needs.
+TEST(BakedReaderHeader, FileReadingApart) {
+  std::vector<unsigned char> text = read_bytes(std::string(GEOM_SOURCE_DIR) + "/libgeom/include/geom/baked_file.h");
+  const std::string src(text.begin(), text.end());
   const size_t posix_block = src.find("#if defined(__unix__) || defined(__APPLE__)");
   const size_t posix_end = src.find("#else", posix_block);
   ASSERT_NE(posix_block, std::string::npos);
+  const std::vector<std::string> allowed = {"<cstdint>", "<cstdio>", "<cstring>", "<filesystem>",
+                                            "<string>",  "<vector>", "\"geom/baked_reader.h\""};
+  const std::vector<std::string> posix = {"<fcntl.h>", "<sys/mman.h>", "<sys/stat.h>", "<unistd.h>"};
   size_t includes = 0;
   for (size_t at = src.find("#include"); at != std::string::npos; at = src.find("#include", at + 1)) {
-    size_t end = src.find('\n', at);
-    std::string what = src.substr(at + 9, end - at - 9);
+    const size_t end = src.find('\n', at);
+    const std::string what = src.substr(at + 9, end - at - 9);
     const bool in_block = at > posix_block && at < posix_end;
     const std::vector<std::string>& ok = in_block ? posix : allowed;
     EXPECT_NE(std::find(ok.begin(), ok.end(), what), ok.end()) << "includes " << what;

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <string>
 
+#include "geom/baked_file.h"
 #include "geom/baked_reader.h"
 #include "geom/baked_records.h"
 #include "scratch.h"

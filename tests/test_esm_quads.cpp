@@ -7,7 +7,7 @@
 //     opens exactly one quad per face; skipped edges are coplanar or concave;
 //   * the open quads of a closed convex mesh form closed loops;
 //   * an open quad covers at least 70% of the nominal width 1.5 * len in the
-//     shadow map (seed 000 section 4.1 bounds the loss at 70.7%);
+//     shadow map (Bujnak 2004, Sect. 4.1, bounds the loss at 70.7%);
 //   * records are 36 bytes and, with the planes they reference, at most 64
 //     bytes per emitted edge on the test meshes.
 // Lights within 1e-6 x the diagonal of a face's plane (or a bevel plane) are

@@ -4,7 +4,7 @@
 // accepted scene has indices in range and finite positions). The sanitizer job
 // (scripts/sanitize.sh) runs this under ASan/UBSan, where each original finding
 // (a crash, an overflow, undefined behaviour) would show again; the refusal
-// each one now gets is checked here too, so the test fails without the fix in
+// each one must get is checked here too, so the test fails without the fix in
 // any build.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// What each finding was, and the refusal it must now get.
+// What each finding was, and the refusal it must get.
 struct Finding {
   const char* what;
   const char* refusal;  // a fragment of the error message

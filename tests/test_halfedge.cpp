@@ -15,6 +15,7 @@
 
 #include "geom/adjacency.h"
 #include "geom/halfedge.h"
+#include "openmesh_halfedge.h"
 #include "geom/import.h"
 #include "geom/topology.h"
 #include "geom/weld.h"

@@ -434,7 +434,7 @@ TEST(Quake3Bsp, TruncationsRefused) {
 
 // Through the pipeline: the report of a real map carries the counts per face
 // type, and the topology of the world is that of a game level: open, with
-// non-manifold edges (seed 004, section 2.2: "each edge in the world can be
+// non-manifold edges (Arneson n.d., Sect. 2.2: "each edge in the world can be
 // shared by more than two faces").
 TEST(Quake3Bsp, ReportOfRealMap) {
   ImportResult r = import_file(kMaps + ":maps/oa_ctf2.bsp");

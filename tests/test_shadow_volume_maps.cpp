@@ -8,7 +8,7 @@ using namespace geom;
 using namespace q3test;
 
 // ---------------------------------------------------------------------------
-// The shadow-volume law on real maps (MISSION.md, "What correctness means"):
+// The shadow-volume law on real maps:
 // for a point light inside the level, a point P is inside the volume (its
 // stencil count is non-zero) exactly when the segment from P to the light is
 // blocked. The count is that of depth-fail: the volume triangles that

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "geom/halfedge.h"
+#include "openmesh_halfedge.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
 

@@ -107,17 +107,16 @@ int fail(const std::string& message) {
 }
 
 // BIN/../share/geom/NAME beside this program's binary, as installed wherever
-// the prefix was moved, if `probe` exists there; else `fallback` (the source
-// tree's, for a binary of the build tree).
-std::string beside_binary(const std::string& name, const std::string& probe, const std::string& fallback) {
+// the prefix was moved (the build tree has the same layout: build/share/geom
+// links to the source tree's files, viewer/CMakeLists.txt), so the binary
+// holds no path of the machine it was built on.
+std::string beside_binary(const std::string& name) {
   const std::string dir = self_dir();
-  if (dir.empty()) return fallback;
-  const std::filesystem::path p = (std::filesystem::path(dir) / ".." / "share" / "geom" / name).lexically_normal();
-  std::error_code ec;
-  return std::filesystem::exists(probe.empty() ? p : p / probe, ec) ? p.string() : fallback;
+  if (dir.empty()) return "share/geom/" + name;
+  return (std::filesystem::path(dir) / ".." / "share" / "geom" / name).lexically_normal().string();
 }
 
-std::string default_shaders() { return beside_binary("shaders", "shade.frag", GEOM_SHADER_DIR); }
+std::string default_shaders() { return beside_binary("shaders"); }
 
 std::string find_shaders(const std::string& flag) {
   if (!flag.empty()) return flag;
@@ -160,7 +159,7 @@ int parse_options(int argc, char** argv, Options& o) {
   }
   if (args.positional().size() > 1) return fail("one input file at most");
   o.file = !args.positional().empty() ? args.positional()[0]
-                                      : beside_binary("default_scene.gltf", "", GEOMVIEW_DEFAULT_SCENE);
+                                      : beside_binary("default_scene.gltf");
   std::string error;
   if (!parse_techniques(args.all("--technique"), o.techniques, error)) return fail(error);
   if (o.techniques.empty()) o.techniques.push_back(render::Technique::Pcf);

@@ -1,6 +1,6 @@
 // Triangles-with-adjacency index buffer (see geom/adjacency.h), for the
-// geometry-shader silhouette test of seed 001_0225cc27c0669b01.txt, section
-// 3.2.1.
+// geometry-shader silhouette test of Kenzel 2013 (Edge Distance Shadow
+// Mapping), Sect. 3.2.1.
 //
 // From the edge table (geom/topology.h): each edge lists its faces in triangle
 // order with the direction each runs it, so one pass over an edge's faces

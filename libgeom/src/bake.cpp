@@ -3,8 +3,10 @@
 #include "geom/bake.h"
 
 #include <algorithm>
+#include <cctype>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <new>
 
@@ -171,36 +173,93 @@ bool keep_memory_across_bakes() {
 
 namespace {
 
-// `release` (may be null): the scene's triangles, freed once welded. `out`
-// (may be null): each section written to it as soon as its stage has run, and
-// its buffer freed; the result's sections then describe them without bytes.
-BakeResult bake(const Scene& scene, Scene* release, const std::string& name, const BakeOptions& options,
-                BakedFileWriter* out) {
-  BakeResult r;
-  try {
-    // The static lights: the scene's, then the caller's; as the lights section holds them.
-    std::vector<Light> lights;
-    if (options.scene_lights) lights = scene.lights;
-    for (size_t i = 0; i < options.lights.size(); ++i) {
-      lights.push_back(options.lights[i]);
-      if (lights.back().name.empty()) lights.back().name = "--light " + std::to_string(i + 1);
+// The pipeline's stages, as run_pipeline names them (StageTiming::stage).
+enum class Stage : unsigned { Weld, Topology, Halfedge, Planes, Adjacency, Esm, Volume, Lights, Count };
+
+Stage stage_of(const char* name) {
+  static const char* const kNames[] = {"weld",      "topology", "halfedge", "planes",
+                                       "adjacency", "esm",      "volume",   "lights"};
+  for (unsigned i = 0; i < unsigned(Stage::Count); ++i)
+    if (std::strcmp(name, kNames[i]) == 0) return Stage(i);
+  return Stage::Count;  // a stage no section waits for
+}
+
+// The sections in file order, in groups (geom/bake.h's table); each group is
+// emitted once the stages it needs have run (without a writer: after the whole run).
+enum class Group : unsigned { Mesh, Topology, Esm, Volume, Adjacency, LightTable, LightVolumes, Silhouette, Done };
+// What a group says: wait for more stages, go on to the next group, or stop (no section follows).
+enum class Step { Wait, Next, Stop };
+
+// One bake. `release` (may be null): the scene's triangles, freed once welded.
+// `out` (may be null): each section written to it as soon as its stage has
+// run, and its buffer freed; the result's sections then describe them without bytes.
+class Baker {
+ public:
+  Baker(const Scene& scene, Scene* release, const std::string& name, const BakeOptions& options, BakedFileWriter* out)
+      : scene_(scene),
+        release_(release),
+        name_(name),
+        options_(options),
+        asked_(options.pipeline),
+        out_(out),
+        quads_(out, SectionType::EsmQuads, "esm_quads", sizeof(EsmQuad)),
+        sides_(out, SectionType::VolumeSides, "volume_sides", sizeof(SvSide)),
+        caps_(out, SectionType::VolumeCaps, "volume_caps", sizeof(SvCap)) {}
+
+  BakeResult run() {
+    try {
+      if (!gather_lights()) return std::move(r_);
+      const PipelineOptions po = pipeline_options();
+      if (out_) expect_sections();
+      // Sections view the buffers (no copy) inside the run `kept_` holds; with
+      // `out_` they are written (and their buffers freed) as they are made.
+      *kept_ = run_pipeline(positions_of(scene_.positions.data(), scene_.vertex_count()), scene_.indices.data(),
+                            scene_.triangle_count(), lights_, po,
+                            [this](const char* stage, Pipeline& p) { after_stage(stage, p); });
+      flush(*kept_, true);
+    } catch (const WriteFailed&) {
+      return failure("cannot write the output: " + out_->error());
+    } catch (const std::bad_alloc&) {
+      return failure("out of memory while baking");
+    } catch (const std::exception& e) {
+      return failure(e.what());
     }
-    std::vector<double> table(4 * lights.size());
-    for (size_t i = 0; i < lights.size(); ++i) {
-      double* h = &table[4 * i];
-      light_homogeneous(lights[i], h);
+    r_.ok = true;
+    return std::move(r_);
+  }
+
+ private:
+  BakeResult failure(const std::string& what) {
+    BakeResult r;
+    r.error = name_ + ": " + what;
+    return r;
+  }
+
+  // The static lights: the scene's, then the caller's; as the lights section holds them.
+  bool gather_lights() {
+    if (options_.scene_lights) lights_ = scene_.lights;
+    for (size_t i = 0; i < options_.lights.size(); ++i) {
+      lights_.push_back(options_.lights[i]);
+      if (lights_.back().name.empty()) lights_.back().name = "--light " + std::to_string(i + 1);
+    }
+    table_.assign(4 * lights_.size(), 0.0);
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      double* h = &table_[4 * i];
+      light_homogeneous(lights_[i], h);
       if (!finite4(h) || (h[0] == 0 && h[1] == 0 && h[2] == 0 && h[3] == 0)) {
-        r.error = name + ": light '" + lights[i].name + "' is not a usable (x, y, z, w): non-finite or all zero";
-        return r;
+        r_.error = name_ + ": light '" + lights_[i].name + "' is not a usable (x, y, z, w): non-finite or all zero";
+        return false;
       }
     }
+    return true;
+  }
 
-    const PipelineOptions& asked = options.pipeline;
-    PipelineOptions po = asked;
+  PipelineOptions pipeline_options() {
+    PipelineOptions po = asked_;
     po.halfedge = true;  // the report's
     po.release_early = true;
     po.timing = false;
-    if (out) {
+    if (out_) {
       // Streamed, the adjacency is built after the volume, when the volume's
       // buffers are written and freed, from the edge table the volume read
       // last; this bake frees each stage's tables itself as the pipeline
@@ -208,204 +267,250 @@ BakeResult bake(const Scene& scene, Scene* release, const std::string& name, con
       po.adjacency = false;
       po.release_early = false;
     }
-    const bool more = asked.esm || asked.volume || asked.adjacency || !lights.empty();  // past the topology
-    const bool framed = asked.esm || asked.volume || !lights.empty();                   // buffers in the local frame
-    if (out) {
-      const size_t n = size_t(options.positions) + options.indices + options.weld_remap + asked.face_planes +
-                       options.topology_report +
-                       (more ? size_t(framed) + 2 * asked.esm + 3 * asked.volume + asked.adjacency + !lights.empty() +
-                                   3 * lights.size() + 1
-                             : 0);
-      if (!out->expect(n)) throw WriteFailed();
-    }
+    more_ = asked_.esm || asked_.volume || asked_.adjacency || !lights_.empty();  // past the topology
+    framed_ = asked_.esm || asked_.volume || !lights_.empty();                    // buffers in the local frame
     // Streamed, the ESM quads and (without lights: no light volume reads the
     // generic one) the volume's side records and caps go to the file as their
     // stage makes them, a piece at a time: they are most of the file, and
     // were the bake's peak.
-    const bool stream_esm = out && asked.esm, stream_volume = out && asked.volume && lights.empty();
-    RecordStream quads(out, SectionType::EsmQuads, "esm_quads", sizeof(EsmQuad));
-    RecordStream sides(out, SectionType::VolumeSides, "volume_sides", sizeof(SvSide));
-    RecordStream caps(out, SectionType::VolumeCaps, "volume_caps", sizeof(SvCap));
-    if (stream_esm) po.esm_options.quads_out = [&](const EsmQuad* p, size_t n) { quads.write(p, n); };
+    stream_esm_ = out_ && asked_.esm;
+    stream_volume_ = out_ && asked_.volume && lights_.empty();
+    if (stream_esm_) po.esm_options.quads_out = [this](const EsmQuad* q, size_t n) { quads_.write(q, n); };
     // The volume's component ids are read by the light volumes only: none here.
-    if (lights.empty()) po.volume_options.component_ids = false;
-    if (stream_volume) {
-      po.volume_options.sides_out = [&](const SvSide* p, size_t n) { sides.write(p, n); };
-      po.volume_options.caps_out = [&](const SvCap* p, size_t n) {
-        sides.close();
-        caps.write(p, n);
+    if (lights_.empty()) po.volume_options.component_ids = false;
+    if (stream_volume_) {
+      po.volume_options.sides_out = [this](const SvSide* q, size_t n) { sides_.write(q, n); };
+      po.volume_options.caps_out = [this](const SvCap* q, size_t n) {
+        sides_.close();
+        caps_.write(q, n);
       };
     }
-    // Sections view the buffers (no copy) inside the run `kept` holds; with
-    // `out` they are written (and their buffers freed) as they are made.
-    const auto kept = std::make_shared<Pipeline>();
-    auto& s = r.sections;
-    const auto emit = [&](BakedSection&& x) {
-      if (out) {
-        if (!out->put(x)) throw WriteFailed();
-        x.view_size = x.size();
-        x.view = nullptr, x.keep.reset(), free_vector(x.bytes);
-      }
-      s.push_back(std::move(x));
-    };
-    // The sections in file order, in groups; each group is emitted once the
-    // stages it needs have run (without `out`: after the whole run).
-    std::vector<std::string> ran;
-    int next = 0;
-    std::string js = "{";
-    const auto flush = [&](Pipeline& p, bool all) {
-      const auto has = [&](const char* stage) { return all || std::find(ran.begin(), ran.end(), stage) != ran.end(); };
-      const WeldResult& w = p.weld;
-      for (;; ++next) switch (next) {
-          case 0:
-            if (!has("weld")) return;
-            if (options.positions)
-              emit(view_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions, kept));
-            if (options.indices) emit(view_section(SectionType::Indices, Format::U32, 4, "indices", w.indices, kept));
-            if (options.weld_remap)
-              emit(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept));
-            if (out) free_vector(p.weld.remap);  // no stage reads it
-            break;
-          case 1:
-            if (!has("halfedge") || ((asked.face_planes || framed) && !has("planes"))) return;
-            if (asked.face_planes) {
-              if (out) {
-                BakedSection meta;
-                if (!put_face_planes(*out, p.planes, meta)) throw WriteFailed();
-                s.push_back(std::move(meta));
-              } else {
-                emit(make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes",
-                                        world_face_planes(p.planes)));
-              }
-            }
-            if (!out) {  // no later section reads them (with `out` the volume still does)
-              free_vector(p.planes.planes);
-              free_vector(p.planes.face_plane);
-            }
-            if (out) free_vector(p.topology.face_component), free_vector(p.topology.face_flags);  // no stage reads them
-            report_of(scene, p, r.report);
-            r.report.file = name;
-            if (options.topology_report) {
-              std::string json = report_json(r.report);
-              emit(make_baked_section(SectionType::TopologyReport, Format::Utf8, 1, "topology",
-                                      std::vector<char>(json.begin(), json.end())));
-            }
-            if (!more) {
-              next = 99;
-              return;
-            }
-            if (framed) {
-              std::vector<double> origin(p.planes.origin, p.planes.origin + 3);
-              emit(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
-              js += "\"frame\":[" + json::number(origin[0]) + "," + json::number(origin[1]) + "," +
-                    json::number(origin[2]) + "],";
-            }
-            break;
-          case 2:
-            if (out && (!asked.esm || has("esm"))) free_vector(p.planes.normals);  // only the ESM quads read them
-            if (!asked.esm) break;
-            if (!has("esm")) return;
-            if (stream_esm)
-              s.push_back(quads.close());
-            else
-              emit(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept));
-            emit(view_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", p.esm.planes, kept));
-            js += "\"esm\":" + esm_json(p.esm.stats) + ",";
-            r.esm = p.esm.stats;
-            if (out) free_vector(p.esm.quads), free_vector(p.esm.planes);
-            break;
-          case 3:
-            if (asked.volume || !lights.empty()) {
-              if (!has("volume")) return;
-              if (out) free_vector(p.planes.planes), free_vector(p.planes.face_plane);  // read by the volume last
-            }
-            if (!asked.volume) break;
-            if (stream_volume) {  // written as they came: the sections end here
-              s.push_back(sides.close());
-              s.push_back(caps.close());
-            } else {
-              emit(record_section(SectionType::VolumeSides, "volume_sides", p.volume.sides, kept));
-              emit(record_section(SectionType::VolumeCaps, "volume_caps", p.volume.caps, kept));
-            }
-            emit(view_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", p.volume.planes, kept));
-            js += "\"volume\":" + volume_json(p.volume.stats) + ",";
-            r.volume = p.volume.stats;
-            if (out && lights.empty()) p.volume = ShadowVolume();  // else the light volumes' source
-            break;
-          case 4:
-            if (out) {  // every stage that reads the edge table has run
-              if (asked.adjacency) {
-                p.adjacency.resize(adjacency_index_count(p.weld.indices.size() / 3));
-                build_adjacency(p.adjacency.data(), p.weld.indices.data(), p.weld.indices.size() / 3, p.topology);
-              }
-              free_vector(p.topology.face_edges), free_vector(p.topology.edges), free_vector(p.topology.edge_faces);
-            }
-            if (!asked.adjacency) break;
-            if (!out && !has("adjacency")) return;
-            js += "\"adjacency\":{\"indices\":" + json::count(p.adjacency.size()) + "},";
-            emit(view_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", p.adjacency, kept));
-            if (out) free_vector(p.adjacency);
-            break;
-          case 5:
-            if (!lights.empty()) emit(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table));
-            break;
-          case 6:
-            if (!lights.empty() && !has("lights")) return;
-            if (!asked.volume) p.volume = ShadowVolume();  // the light volumes' source, emitted by none
-            js += "\"lights\":[";
-            for (size_t i = 0; i < p.lights.size(); ++i) {
-              ShadowVolume& lv = p.lights[i].volume;
-              const uint32_t item = uint32_t(i);
-              const double* h = &table[4 * i];
-              emit(record_section(SectionType::LightSides, "light_sides", lv.sides, kept, item));
-              emit(record_section(SectionType::LightCaps, "light_caps", lv.caps, kept, item));
-              emit(view_section(SectionType::LightPlanes, Format::F32x4, 16, "light_planes", lv.planes, kept, item));
-              js += std::string(i ? "," : "") + "{\"name\":" + json::quote(lights[i].name) + ",\"light\":[" +
-                    json::number(h[0]) + "," + json::number(h[1]) + "," + json::number(h[2]) + "," +
-                    json::number(h[3]) + "],\"sides\":" + json::count(lv.sides.size()) +
-                    ",\"caps\":" + json::count(lv.caps.size()) + ",\"bytes\":" + json::count(lv.stats.bytes) + "}";
-              if (out) lv.sides = {}, lv.caps = {}, free_vector(lv.planes);
-            }
-            js += "]}";
-            if (out) p.volume = ShadowVolume();
-            break;
-          case 7:
-            if (!all) return;
-            r.silhouette = js;
-            emit(make_baked_section(SectionType::SilhouetteReport, Format::Utf8, 1, "silhouette",
-                                    std::vector<char>(js.begin(), js.end())));
-            break;
-          default:
-            return;
-        }
-    };
-    const auto after_stage = [&](const char* stage, Pipeline& p) {
-      if (release && std::string(stage) == "weld") {
-        free_vector(release->positions);
-        free_vector(release->indices);
-        free_vector(release->sources);
-      }
-      ran.push_back(stage);
-      if (out) flush(p, false);
-    };
-    *kept = run_pipeline(positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
-                         scene.triangle_count(), lights, po, after_stage);
-    flush(*kept, true);
-  } catch (const WriteFailed&) {
-    r = BakeResult();
-    r.error = name + ": cannot write the output: " + out->error();
-    return r;
-  } catch (const std::bad_alloc&) {
-    r = BakeResult();
-    r.error = name + ": out of memory while baking";
-    return r;
-  } catch (const std::exception& e) {
-    r = BakeResult();
-    r.error = name + ": " + e.what();
-    return r;
+    return po;
   }
-  r.ok = true;
-  return r;
+
+  void expect_sections() {
+    const size_t n = size_t(options_.positions) + options_.indices + options_.weld_remap + asked_.face_planes +
+                     options_.topology_report +
+                     (more_ ? size_t(framed_) + 2 * asked_.esm + 3 * asked_.volume + asked_.adjacency +
+                                  !lights_.empty() + 3 * lights_.size() + 1
+                            : 0);
+    if (!out_->expect(n)) throw WriteFailed();
+  }
+
+  void after_stage(const char* name, Pipeline& p) {
+    const Stage stage = stage_of(name);
+    if (release_ && stage == Stage::Weld) {
+      free_vector(release_->positions);
+      free_vector(release_->indices);
+      free_vector(release_->sources);
+    }
+    if (stage != Stage::Count) ran_[unsigned(stage)] = true;
+    if (out_) flush(p, false);
+  }
+
+  bool has(Stage stage, bool all) const { return all || ran_[unsigned(stage)]; }
+
+  void emit(BakedSection&& x) {
+    if (out_) {
+      if (!out_->put(x)) throw WriteFailed();
+      x.view_size = x.size();
+      x.view = nullptr, x.keep.reset(), free_vector(x.bytes);
+    }
+    r_.sections.push_back(std::move(x));
+  }
+
+  // Emits the groups whose stages have run (`all`: every stage has).
+  void flush(Pipeline& p, bool all) {
+    while (next_ != Group::Done) {
+      const Step step = emit_group(next_, p, all);
+      if (step == Step::Wait) return;
+      next_ = step == Step::Stop ? Group::Done : Group(unsigned(next_) + 1);
+    }
+  }
+
+  Step emit_group(Group group, Pipeline& p, bool all) {
+    switch (group) {
+      case Group::Mesh:
+        return mesh(p, all);
+      case Group::Topology:
+        return topology(p, all);
+      case Group::Esm:
+        return esm(p, all);
+      case Group::Volume:
+        return volume(p, all);
+      case Group::Adjacency:
+        return adjacency(p, all);
+      case Group::LightTable:
+        return light_table();
+      case Group::LightVolumes:
+        return light_volumes(p, all);
+      case Group::Silhouette:
+        return silhouette(all);
+      case Group::Done:
+        break;
+    }
+    return Step::Stop;
+  }
+
+  // positions, indices, weld_remap.
+  Step mesh(Pipeline& p, bool all) {
+    if (!has(Stage::Weld, all)) return Step::Wait;
+    const WeldResult& w = p.weld;
+    if (options_.positions)
+      emit(view_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions, kept_));
+    if (options_.indices) emit(view_section(SectionType::Indices, Format::U32, 4, "indices", w.indices, kept_));
+    if (options_.weld_remap) emit(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept_));
+    if (out_) free_vector(p.weld.remap);  // no stage reads it
+    return Step::Next;
+  }
+
+  // face_planes, topology, frame.
+  Step topology(Pipeline& p, bool all) {
+    if (!has(Stage::Halfedge, all) || ((asked_.face_planes || framed_) && !has(Stage::Planes, all))) return Step::Wait;
+    if (asked_.face_planes) {
+      if (out_) {
+        BakedSection meta;
+        if (!put_face_planes(*out_, p.planes, meta)) throw WriteFailed();
+        r_.sections.push_back(std::move(meta));
+      } else {
+        emit(
+            make_baked_section(SectionType::FacePlanes, Format::F32x4, 16, "face_planes", world_face_planes(p.planes)));
+      }
+    }
+    if (!out_) {  // no later section reads them (with `out_` the volume still does)
+      free_vector(p.planes.planes);
+      free_vector(p.planes.face_plane);
+    }
+    if (out_) free_vector(p.topology.face_component), free_vector(p.topology.face_flags);  // no stage reads them
+    report_of(scene_, p, r_.report);
+    r_.report.file = name_;
+    if (options_.topology_report) {
+      const std::string json = report_json(r_.report);
+      emit(make_baked_section(SectionType::TopologyReport, Format::Utf8, 1, "topology",
+                              std::vector<char>(json.begin(), json.end())));
+    }
+    if (!more_) return Step::Stop;
+    if (framed_) {
+      std::vector<double> origin(p.planes.origin, p.planes.origin + 3);
+      emit(make_baked_section(SectionType::Frame, Format::F64x3, 24, "frame", origin));
+      js_ += "\"frame\":[" + json::number(origin[0]) + "," + json::number(origin[1]) + "," + json::number(origin[2]) +
+             "],";
+    }
+    return Step::Next;
+  }
+
+  // esm_quads, esm_planes.
+  Step esm(Pipeline& p, bool all) {
+    if (out_ && (!asked_.esm || has(Stage::Esm, all))) free_vector(p.planes.normals);  // only the ESM quads read them
+    if (!asked_.esm) return Step::Next;
+    if (!has(Stage::Esm, all)) return Step::Wait;
+    if (stream_esm_)
+      r_.sections.push_back(quads_.close());
+    else
+      emit(record_section(SectionType::EsmQuads, "esm_quads", p.esm.quads, kept_));
+    emit(view_section(SectionType::EsmPlanes, Format::F32x4, 16, "esm_planes", p.esm.planes, kept_));
+    js_ += "\"esm\":" + esm_json(p.esm.stats) + ",";
+    r_.esm = p.esm.stats;
+    if (out_) free_vector(p.esm.quads), free_vector(p.esm.planes);
+    return Step::Next;
+  }
+
+  // volume_sides, volume_caps, volume_planes.
+  Step volume(Pipeline& p, bool all) {
+    if (asked_.volume || !lights_.empty()) {
+      if (!has(Stage::Volume, all)) return Step::Wait;
+      if (out_) free_vector(p.planes.planes), free_vector(p.planes.face_plane);  // read by the volume last
+    }
+    if (!asked_.volume) return Step::Next;
+    if (stream_volume_) {  // written as they came: the sections end here
+      r_.sections.push_back(sides_.close());
+      r_.sections.push_back(caps_.close());
+    } else {
+      emit(record_section(SectionType::VolumeSides, "volume_sides", p.volume.sides, kept_));
+      emit(record_section(SectionType::VolumeCaps, "volume_caps", p.volume.caps, kept_));
+    }
+    emit(view_section(SectionType::VolumePlanes, Format::F32x4, 16, "volume_planes", p.volume.planes, kept_));
+    js_ += "\"volume\":" + volume_json(p.volume.stats) + ",";
+    r_.volume = p.volume.stats;
+    if (out_ && lights_.empty()) p.volume = ShadowVolume();  // else the light volumes' source
+    return Step::Next;
+  }
+
+  // adjacency (streamed: built here, once every stage that reads the edge table has run).
+  Step adjacency(Pipeline& p, bool all) {
+    if (out_) {
+      if (asked_.adjacency) {
+        p.adjacency.resize(adjacency_index_count(p.weld.indices.size() / 3));
+        build_adjacency(p.adjacency.data(), p.weld.indices.data(), p.weld.indices.size() / 3, p.topology);
+      }
+      free_vector(p.topology.face_edges), free_vector(p.topology.edges), free_vector(p.topology.edge_faces);
+    }
+    if (!asked_.adjacency) return Step::Next;
+    if (!out_ && !has(Stage::Adjacency, all)) return Step::Wait;
+    js_ += "\"adjacency\":{\"indices\":" + json::count(p.adjacency.size()) + "},";
+    emit(view_section(SectionType::AdjacencyIndices, Format::U32, 4, "adjacency", p.adjacency, kept_));
+    if (out_) free_vector(p.adjacency);
+    return Step::Next;
+  }
+
+  // lights.
+  Step light_table() {
+    if (!lights_.empty()) emit(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table_));
+    return Step::Next;
+  }
+
+  // light_sides, light_caps, light_planes per light.
+  Step light_volumes(Pipeline& p, bool all) {
+    if (!lights_.empty() && !has(Stage::Lights, all)) return Step::Wait;
+    if (!asked_.volume) p.volume = ShadowVolume();  // the light volumes' source, emitted by none
+    js_ += "\"lights\":[";
+    for (size_t i = 0; i < p.lights.size(); ++i) {
+      ShadowVolume& lv = p.lights[i].volume;
+      const uint32_t item = uint32_t(i);
+      const double* h = &table_[4 * i];
+      emit(record_section(SectionType::LightSides, "light_sides", lv.sides, kept_, item));
+      emit(record_section(SectionType::LightCaps, "light_caps", lv.caps, kept_, item));
+      emit(view_section(SectionType::LightPlanes, Format::F32x4, 16, "light_planes", lv.planes, kept_, item));
+      js_ += std::string(i ? "," : "") + "{\"name\":" + json::quote(lights_[i].name) + ",\"light\":[" +
+             json::number(h[0]) + "," + json::number(h[1]) + "," + json::number(h[2]) + "," + json::number(h[3]) +
+             "],\"sides\":" + json::count(lv.sides.size()) + ",\"caps\":" + json::count(lv.caps.size()) +
+             ",\"bytes\":" + json::count(lv.stats.bytes) + "}";
+      if (out_) lv.sides = {}, lv.caps = {}, free_vector(lv.planes);
+    }
+    js_ += "]}";
+    if (out_) p.volume = ShadowVolume();
+    return Step::Next;
+  }
+
+  // silhouette: last, once the whole run is in.
+  Step silhouette(bool all) {
+    if (!all) return Step::Wait;
+    r_.silhouette = js_;
+    emit(make_baked_section(SectionType::SilhouetteReport, Format::Utf8, 1, "silhouette",
+                            std::vector<char>(js_.begin(), js_.end())));
+    return Step::Next;
+  }
+
+  const Scene& scene_;
+  Scene* release_;
+  const std::string& name_;
+  const BakeOptions& options_;
+  const PipelineOptions& asked_;
+  BakedFileWriter* out_;
+  std::vector<Light> lights_;
+  std::vector<double> table_;  // (x, y, z, w) per light
+  bool more_ = false, framed_ = false, stream_esm_ = false, stream_volume_ = false;
+  RecordStream quads_, sides_, caps_;
+  const std::shared_ptr<Pipeline> kept_ = std::make_shared<Pipeline>();
+  bool ran_[unsigned(Stage::Count)] = {};
+  Group next_ = Group::Mesh;
+  std::string js_ = "{";  // the silhouette section's JSON
+  BakeResult r_;
+};
+
+BakeResult bake(const Scene& scene, Scene* release, const std::string& name, const BakeOptions& options,
+                BakedFileWriter* out) {
+  return Baker(scene, release, name, options, out).run();
 }
 
 }  // namespace
@@ -422,17 +527,48 @@ BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions&
   return bake(scene, &scene, name, options, &out);
 }
 
+std::string stored_name(const std::string& input) {
+  const auto base = [](const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+  };
+  std::string lower = input;
+  for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* ext : {".pk3:", ".zip:"}) {
+    const size_t at = lower.find(ext);
+    if (at != std::string::npos) return base(input.substr(0, at + 4)) + input.substr(at + 4);
+  }
+  return base(input);
+}
+
+namespace {
+
+void replace_all(std::string& s, const std::string& from, const std::string& to) {
+  if (from.empty()) return;
+  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+    s.replace(at, from.size(), to);
+}
+
+}  // namespace
+
 BakeResult bake_file(const std::string& input, const std::string& output, const BakeOptions& options,
-                     const ImportOptions& import_options) {
+                     const ImportOptions& import_options, const std::string& name) {
   ImportResult imported = import_file(input, import_options);
   if (!imported.ok) {
     BakeResult r;
     r.error = imported.error;
     return r;
   }
-  BakeResult r = bake_scene(std::move(imported.scene), input, options);
+  // The output holds the stored name, never the path as given (hermetic bytes):
+  // the importer's warnings are stored with it too.
+  const std::string stored = name.empty() ? stored_name(input) : name;
+  for (std::string& w : imported.scene.warnings) replace_all(w, input, stored);
+  BakeResult r = bake_scene(std::move(imported.scene), stored, options);
   imported = ImportResult();
-  if (!r.ok) return r;
+  if (!r.ok) {
+    if (r.error.rfind(stored + ":", 0) == 0) r.error = input + r.error.substr(stored.size());
+    return r;
+  }
   std::string error;
   if (!write_baked(output, r.sections, error)) {
     r.ok = false;

@@ -4,7 +4,7 @@
 // row-major with x (width) fastest, as in the BSP vertex lump. It is made of
 // ((width-1)/2) x ((height-1)/2) biquadratic Bezier pieces, each spanning 3x3
 // control points; neighbouring pieces share a row or column of control points.
-// (Seed 004_3832d04cb6bd7525.txt, section 2.3: "Patches refer to quadratic
+// (Arneson n.d., Real-Time Shadows, Sect. 2.3: "Patches refer to quadratic
 // Bezier patches ... we tessellate them just once at startup".)
 //
 // Tessellation at level N cuts every piece into N x N cells, so the output is a

@@ -1,6 +1,6 @@
-// Extended-shadow-map silhouette quads (see geom/esm_quads.h). Seed
-// 000_4e3b0bad7883dc3e.txt, section 3.1 (which edges) and section 4.1 with
-// figures 3-5 (degenerate quad, extrusion vector, bevel plane).
+// Extended-shadow-map silhouette quads (see geom/esm_quads.h). Bujnak 2004
+// (Extended Shadow Maps), Sect. 3.1 (which edges) and Sect. 4.1 with
+// Fig. 3-5 (degenerate quad, extrusion vector, bevel plane).
 #include "geom/esm_quads.h"
 
 #include <algorithm>
@@ -127,6 +127,179 @@ class QBatch {
   int n_ = 0;
 };
 
+// Builds the quads of one mesh: the state the walk over the edges shares.
+class QuadBuilder {
+ public:
+  QuadBuilder(PositionSpan positions, const uint32_t* indices, const Topology& topology, const FacePlanes& fp,
+              const EsmOptions& options)
+      : positions_(positions),
+        indices_(indices),
+        topology_(topology),
+        fp_(fp),
+        options_(options),
+        remap_(fp.plane_count(), FacePlanes::kNone),
+        bevel_dot_(-std::cos(options.bevel_below_degrees * M_PI / 180.0)) {
+    for (int a = 0; a < 3; ++a) r_.origin[a] = fp.origin[a];
+    r_.stats.edges = topology.edges.size();
+  }
+
+  EsmQuads build() {
+    EsmStats& st = r_.stats;
+    reserve();
+    for (const Edge& e : topology_.edges) {
+      if (options_.quads_out && r_.quads.size() >= kPiece) send();  // streamed: a piece of whole edges
+      live_.gather(topology_, fp_, e);
+      if (live_.empty()) continue;
+      ++st.candidate_edges;
+      const size_t before = r_.quads.size();
+      if (live_.size() == 2)
+        pair_quads(e);
+      else
+        knife_quads(e);
+      if (r_.quads.size() > before) ++st.emitted_edges;
+    }
+    batch_.flush(r_.quads);
+    if (options_.quads_out) {
+      if (!r_.quads.empty()) send();
+      std::vector<EsmQuad>().swap(r_.quads);
+    }
+    st.quads = quads_sent_ + r_.quads.size();
+    st.bytes = st.quads * sizeof(EsmQuad) + 16 * uint64_t(r_.planes.size() / 4);
+    st.naive_bytes = 160 * st.candidate_edges;
+    return std::move(r_);
+  }
+
+ private:
+  static constexpr size_t kPiece = 4096;  // quads per piece when streamed
+
+  // Room is reserved: four plain stores (a range insert is a general-purpose
+  // call per plane).
+  void push_plane(float a, float b, float c, float d) {
+    r_.planes.push_back(a), r_.planes.push_back(b), r_.planes.push_back(c), r_.planes.push_back(d);
+  }
+  // A face's plane in the quads' own table, added on first use.
+  uint32_t plane_of(uint32_t face) {
+    const uint32_t p = fp_.face_plane[face];
+    if (remap_[p] == FacePlanes::kNone) {
+      remap_[p] = uint32_t(r_.planes.size() / 4);
+      const float* q = fp_.planes.data() + 4 * size_t(p);
+      push_plane(q[0], q[1], q[2], q[3]);
+    }
+    return remap_[p];
+  }
+  Vec3 pos(uint32_t v) const {
+    const Float3& p = positions_[v];
+    return Vec3{double(p.x) - fp_.origin[0], double(p.y) - fp_.origin[1], double(p.z) - fp_.origin[2]};
+  }
+  Vec3 normal(uint32_t f) const { return Vec3{fp_.normals[3 * f], fp_.normals[3 * f + 1], fp_.normals[3 * f + 2]}; }
+  // q: the extrusion vector before unit() (finished in the batch).
+  void emit(Vec3 p0, Vec3 p1, uint32_t pa, uint32_t pb, Vec3 q) {
+    EsmQuad& e = r_.quads.emplace_back();  // in place (one built aside and copied in stalls on its bytes)
+    e.p0[0] = float(p0.x), e.p0[1] = float(p0.y), e.p0[2] = float(p0.z);
+    e.p1[0] = float(p1.x), e.p1[1] = float(p1.y), e.p1[2] = float(p1.z);
+    e.plane_a = pa;
+    e.plane_b = pb;
+    batch_.push(r_.quads, q);
+  }
+
+  // Room for the most an edge can emit (a pair: two quads and a bevel plane;
+  // otherwise two quads and a plane per face), so the buffers never grow
+  // (a grown vector copies itself; the unused tail is never paged in).
+  void reserve() {
+    // Sums over the edges, from the table's totals: every face entry, less
+    // one per edge of two faces (a manifold or inconsistent edge).
+    const TopologyStats& ts = topology_.stats;
+    size_t pairs = size_t(ts.manifold_edges + ts.inconsistent_edges);
+    if (ts.edges != topology_.edges.size()) {  // stats not filled in: count
+      pairs = 0;
+      for (const Edge& e : topology_.edges) pairs += e.face_count == 2;
+    }
+    const size_t entries = topology_.edge_faces.size();
+    const size_t quads = 2 * (entries - pairs), planes = 4 * fp_.plane_count() + 4 * (entries - pairs);
+    r_.quads.reserve(options_.quads_out ? kPiece + 4 : quads);
+    r_.planes.reserve(planes);
+  }
+  void send() {
+    batch_.flush(r_.quads);  // the piece's last extrusion vectors
+    options_.quads_out(r_.quads.data(), r_.quads.size());
+    quads_sent_ += r_.quads.size();
+    r_.quads.clear();
+  }
+
+  // A pair: manifold (opposite directions) or inconsistent (B flipped). One
+  // quad, or two against a bevel plane where the faces meet under
+  // bevel_below_degrees; none for coplanar faces, nor concave ones unless kept.
+  void pair_quads(const Edge& e) {
+    EsmStats& st = r_.stats;
+    const Vec3 v0 = pos(e.v0), v1 = pos(e.v1);
+    const bool inconsistent = !((live_[0] ^ live_[1]) & 1u);
+    const uint32_t ea = inconsistent || !(live_[0] & 1u) ? live_[0] : live_[1];
+    const uint32_t eb = ea == live_[0] ? live_[1] : live_[0];
+    const uint32_t fa = ea >> 1, fb = eb >> 1;
+    if (!inconsistent && fp_.face_plane[fa] == fp_.face_plane[fb]) {
+      ++st.skipped_coplanar;
+      return;
+    }
+    const Vec3 p0 = (ea & 1u) ? v1 : v0, p1 = (ea & 1u) ? v0 : v1;  // A traverses p0 -> p1
+    const Vec3 na = normal(fa), nb = normal(fb) * (inconsistent ? -1.0 : 1.0);
+    const uint32_t* w = indices_ + 3 * size_t(fb);
+    // The first of B's vertices off the edge, selected by masks: which it
+    // is follows no pattern a branch predictor could learn.
+    const uint32_t m0 = 0u - uint32_t(w[0] != e.v0 && w[0] != e.v1), m1 = 0u - uint32_t(w[1] != e.v0 && w[1] != e.v1);
+    const uint32_t far = (w[0] & m0) | (~m0 & ((w[1] & m1) | (~m1 & w[2])));
+    const bool concave = dot(na, pos(far) - p0) > 0;
+    if (concave && !options_.keep_concave) {
+      ++st.skipped_concave;
+      return;
+    }
+    const uint32_t pa = plane_of(fa), pb = plane_of(fb) | (inconsistent ? EsmQuad::kFlip : 0u);
+    if (dot(na, nb) >= bevel_dot_) {
+      emit(p0, p1, pa, pb, na + nb);
+      return;
+    }
+    // Bevel plane: the normalized sum of the two planes, through the edge.
+    Vec3 s = na + nb;
+    const Vec3 nbev = length(s) > 1e-6 ? unit(s) : unit(cross(p1 - p0, na));
+    const Vec3 mid = (p0 + p1) * 0.5;
+    const uint32_t pbev = uint32_t(r_.planes.size() / 4);
+    push_plane(float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid)));
+    emit(p0, p1, pa, pbev, na + nbev);
+    emit(p0, p1, pbev, pb, nbev + nb);
+    ++st.bevel_edges;
+  }
+
+  // Boundary or non-manifold: each face is a knife edge (its plane and the
+  // same plane flipped, 180 degrees apart), split against the bevel plane
+  // through the edge with normal u, in the face's plane pointing away from
+  // it: two quads, exactly one open for any light off the planes.
+  void knife_quads(const Edge& e) {
+    const Vec3 v0 = pos(e.v0), v1 = pos(e.v1);
+    for (uint32_t ef : live_) {
+      const uint32_t f = ef >> 1;
+      const Vec3 p0 = (ef & 1u) ? v1 : v0, p1 = (ef & 1u) ? v0 : v1;
+      const Vec3 n = normal(f), u = unit(cross(p1 - p0, n));
+      const uint32_t pa = plane_of(f), pbev = uint32_t(r_.planes.size() / 4);
+      const Vec3 mid = (p0 + p1) * 0.5;
+      push_plane(float(u.x), float(u.y), float(u.z), float(-dot(u, mid)));
+      emit(p0, p1, pa, pbev, n + u);
+      emit(p0, p1, pbev, pa | EsmQuad::kFlip, u - n);
+      ++r_.stats.bevel_edges;
+    }
+  }
+
+  PositionSpan positions_;
+  const uint32_t* indices_;
+  const Topology& topology_;
+  const FacePlanes& fp_;
+  const EsmOptions& options_;
+  std::vector<uint32_t> remap_;  // fp's plane -> the quads' plane table
+  const double bevel_dot_;
+  EsmQuads r_;
+  QBatch batch_;
+  detail::LiveFaces live_;
+  uint64_t quads_sent_ = 0;
+};
+
 }  // namespace
 
 void octahedral_encode(const double v[3], int16_t out[2]) { encode(v, out); }
@@ -148,139 +321,7 @@ void octahedral_decode(const int16_t in[2], float v[3]) {
 
 EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                          const Topology& topology, const FacePlanes& fp, const EsmOptions& options) {
-  EsmQuads r;
-  EsmStats& st = r.stats;
-  for (int a = 0; a < 3; ++a) r.origin[a] = fp.origin[a];
-  st.edges = topology.edges.size();
-  std::vector<uint32_t> remap(fp.plane_count(), FacePlanes::kNone);
-  // Room is reserved below: four plain stores (a range insert is a
-  // general-purpose call per plane).
-  auto push_plane = [&](float a, float b, float c, float d) {
-    r.planes.push_back(a), r.planes.push_back(b), r.planes.push_back(c), r.planes.push_back(d);
-  };
-  auto plane_of = [&](uint32_t face) {
-    const uint32_t p = fp.face_plane[face];
-    if (remap[p] == FacePlanes::kNone) {
-      remap[p] = uint32_t(r.planes.size() / 4);
-      const float* q = fp.planes.data() + 4 * size_t(p);
-      push_plane(q[0], q[1], q[2], q[3]);
-    }
-    return remap[p];
-  };
-  auto pos = [&](uint32_t v) {
-    const Float3& p = positions[v];
-    return Vec3{double(p.x) - fp.origin[0], double(p.y) - fp.origin[1], double(p.z) - fp.origin[2]};
-  };
-  auto normal = [&](uint32_t f) { return Vec3{fp.normals[3 * f], fp.normals[3 * f + 1], fp.normals[3 * f + 2]}; };
-  QBatch batch;
-  // q: the extrusion vector before unit() (finished in the batch).
-  auto emit = [&](Vec3 p0, Vec3 p1, uint32_t pa, uint32_t pb, Vec3 q) {
-    EsmQuad& e = r.quads.emplace_back();  // in place (one built aside and copied in stalls on its bytes)
-    e.p0[0] = float(p0.x), e.p0[1] = float(p0.y), e.p0[2] = float(p0.z);
-    e.p1[0] = float(p1.x), e.p1[1] = float(p1.y), e.p1[2] = float(p1.z);
-    e.plane_a = pa;
-    e.plane_b = pb;
-    batch.push(r.quads, q);
-  };
-  const double bevel_dot = -std::cos(options.bevel_below_degrees * M_PI / 180.0);
-
-  // Room for the most an edge can emit (a pair: two quads and a bevel plane;
-  // otherwise two quads and a plane per face), so the buffers never grow
-  // (a grown vector copies itself; the unused tail is never paged in).
-  constexpr size_t kPiece = 4096;  // quads per piece when streamed
-  {
-    // Sums over the edges, from the table's totals: every face entry, less
-    // one per edge of two faces (a manifold or inconsistent edge).
-    const TopologyStats& ts = topology.stats;
-    size_t pairs = size_t(ts.manifold_edges + ts.inconsistent_edges);
-    if (ts.edges != topology.edges.size()) {  // stats not filled in: count
-      pairs = 0;
-      for (const Edge& e : topology.edges) pairs += e.face_count == 2;
-    }
-    const size_t entries = topology.edge_faces.size();
-    const size_t quads = 2 * (entries - pairs), planes = 4 * fp.plane_count() + 4 * (entries - pairs);
-    r.quads.reserve(options.quads_out ? kPiece + 4 : quads);
-    r.planes.reserve(planes);
-  }
-  uint64_t quads_sent = 0;
-  const auto send = [&] {
-    batch.flush(r.quads);  // the piece's last extrusion vectors
-    options.quads_out(r.quads.data(), r.quads.size());
-    quads_sent += r.quads.size();
-    r.quads.clear();
-  };
-  detail::LiveFaces live;
-  for (const Edge& e : topology.edges) {
-    if (options.quads_out && r.quads.size() >= kPiece) send();  // streamed: a piece of whole edges
-    live.gather(topology, fp, e);
-    if (live.empty()) continue;
-    ++st.candidate_edges;
-    const Vec3 v0 = pos(e.v0), v1 = pos(e.v1);
-    const size_t before = r.quads.size();
-    if (live.size() == 2) {
-      // A pair: manifold (opposite directions) or inconsistent (B flipped).
-      const bool inconsistent = !((live[0] ^ live[1]) & 1u);
-      const uint32_t ea = inconsistent || !(live[0] & 1u) ? live[0] : live[1];
-      const uint32_t eb = ea == live[0] ? live[1] : live[0];
-      const uint32_t fa = ea >> 1, fb = eb >> 1;
-      if (!inconsistent && fp.face_plane[fa] == fp.face_plane[fb]) {
-        ++st.skipped_coplanar;
-        continue;
-      }
-      const Vec3 p0 = (ea & 1u) ? v1 : v0, p1 = (ea & 1u) ? v0 : v1;  // A traverses p0 -> p1
-      const Vec3 na = normal(fa), nb = normal(fb) * (inconsistent ? -1.0 : 1.0);
-      const uint32_t* w = indices + 3 * size_t(fb);
-      // The first of B's vertices off the edge, selected by masks: which it
-      // is follows no pattern a branch predictor could learn.
-      const uint32_t m0 = 0u - uint32_t(w[0] != e.v0 && w[0] != e.v1), m1 = 0u - uint32_t(w[1] != e.v0 && w[1] != e.v1);
-      const uint32_t far = (w[0] & m0) | (~m0 & ((w[1] & m1) | (~m1 & w[2])));
-      const bool concave = dot(na, pos(far) - p0) > 0;
-      if (concave && !options.keep_concave) {
-        ++st.skipped_concave;
-        continue;
-      }
-      const uint32_t pa = plane_of(fa), pb = plane_of(fb) | (inconsistent ? EsmQuad::kFlip : 0u);
-      if (dot(na, nb) >= bevel_dot) {
-        emit(p0, p1, pa, pb, na + nb);
-      } else {
-        // Bevel plane: the normalized sum of the two planes, through the edge.
-        Vec3 s = na + nb;
-        const Vec3 nbev = length(s) > 1e-6 ? unit(s) : unit(cross(p1 - p0, na));
-        const Vec3 mid = (p0 + p1) * 0.5;
-        const uint32_t pbev = uint32_t(r.planes.size() / 4);
-        push_plane(float(nbev.x), float(nbev.y), float(nbev.z), float(-dot(nbev, mid)));
-        emit(p0, p1, pa, pbev, na + nbev);
-        emit(p0, p1, pbev, pb, nbev + nb);
-        ++st.bevel_edges;
-      }
-    } else {
-      // Boundary or non-manifold: each face is a knife edge (its plane and the
-      // same plane flipped, 180 degrees apart), split against the bevel plane
-      // through the edge with normal u, in the face's plane pointing away
-      // from it: two quads, exactly one open for any light off the planes.
-      for (uint32_t ef : live) {
-        const uint32_t f = ef >> 1;
-        const Vec3 p0 = (ef & 1u) ? v1 : v0, p1 = (ef & 1u) ? v0 : v1;
-        const Vec3 n = normal(f), u = unit(cross(p1 - p0, n));
-        const uint32_t pa = plane_of(f), pbev = uint32_t(r.planes.size() / 4);
-        const Vec3 mid = (p0 + p1) * 0.5;
-        push_plane(float(u.x), float(u.y), float(u.z), float(-dot(u, mid)));
-        emit(p0, p1, pa, pbev, n + u);
-        emit(p0, p1, pbev, pa | EsmQuad::kFlip, u - n);
-        ++st.bevel_edges;
-      }
-    }
-    if (r.quads.size() > before) ++st.emitted_edges;
-  }
-  batch.flush(r.quads);
-  if (options.quads_out) {
-    if (!r.quads.empty()) send();
-    std::vector<EsmQuad>().swap(r.quads);
-  }
-  st.quads = quads_sent + r.quads.size();
-  st.bytes = st.quads * sizeof(EsmQuad) + 16 * uint64_t(r.planes.size() / 4);
-  st.naive_bytes = 160 * st.candidate_edges;
-  return r;
+  return QuadBuilder(positions, indices, topology, fp, options).build();
 }
 
 }  // namespace geom

@@ -7,21 +7,18 @@
 #include <cmath>
 
 namespace geom {
+namespace {
 
-FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                               const Topology& topology, const FacePlaneOptions& options) {
-  FacePlanes r;
-  r.face_plane.assign(triangle_count, FacePlanes::kNone);
-  r.normals.assign(triangle_count * 3, 0.0);
-
-  // Local frame: the centre of the bounding box of every referenced vertex.
-  // In float (widening is exact and keeps the order, so the bounds are the
-  // same), widened once. Where the topology counted every vertex as used, a
-  // pass over the vertices (each once, in order) instead of over the
-  // indices (each about six times, scattered): the same bounds, as min and
-  // max pick the same value whatever the order, but for the sign of a zero
-  // (equal, so the first seen wins), which reaches the frame only where an
-  // axis is flat at zero: that case takes the index pass.
+// Local frame: the centre of the bounding box of every referenced vertex,
+// and the box's diagonal. In float (widening is exact and keeps the order, so
+// the bounds are the same), widened once. Where the topology counted every
+// vertex as used, a pass over the vertices (each once, in order) instead of
+// over the indices (each about six times, scattered): the same bounds, as min
+// and max pick the same value whatever the order, but for the sign of a zero
+// (equal, so the first seen wins), which reaches the frame only where an axis
+// is flat at zero: that case takes the index pass.
+void local_frame(PositionSpan positions, const uint32_t* indices, size_t triangle_count, const Topology& topology,
+                 FacePlanes& r) {
   float lof[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hif[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
   const auto grow = [&](const Float3& p) {
     const float c[3] = {p.x, p.y, p.z};
@@ -41,21 +38,29 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
     for (size_t i = 0; i < 3 * triangle_count; ++i) grow(positions[indices[i]]);
   }
   const double lo[3] = {lof[0], lof[1], lof[2]}, hi[3] = {hif[0], hif[1], hif[2]};
-  if (triangle_count == 0) return r;
   double diag2 = 0;
   for (int a = 0; a < 3; ++a) {
     r.origin[a] = 0.5 * (lo[a] + hi[a]);
     diag2 += (hi[a] - lo[a]) * (hi[a] - lo[a]);
   }
   r.diagonal = std::sqrt(diag2);
-  auto local = [&](uint32_t v, double out[3]) {
-    const Float3& p = positions[v];
-    out[0] = double(p.x) - r.origin[0];
-    out[1] = double(p.y) - r.origin[1];
-    out[2] = double(p.z) - r.origin[2];
-  };
+}
 
-  // Unit normals in double; degenerate faces keep a zero normal.
+// A vertex in the local frame, in double.
+struct LocalPositions {
+  PositionSpan positions;
+  const double* origin;
+  void operator()(uint32_t v, double out[3]) const {
+    const Float3& p = positions[v];
+    out[0] = double(p.x) - origin[0];
+    out[1] = double(p.y) - origin[1];
+    out[2] = double(p.z) - origin[2];
+  }
+};
+
+// Unit normals in double; degenerate faces keep a zero normal.
+void unit_normals(const LocalPositions& local, const uint32_t* indices, size_t triangle_count, const Topology& topology,
+                  FacePlanes& r) {
   const bool have_flags = topology.face_flags.size() == triangle_count;
   for (size_t f = 0; f < triangle_count; ++f) {
     if (have_flags && (topology.face_flags[f] & (kFaceCollapsed | kFaceZeroArea))) {
@@ -75,6 +80,67 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
     }
     for (int k = 0; k < 3; ++k) r.normals[3 * f + k] = n[k] / len;
   }
+}
+
+// The face across side k of face g over a manifold edge, or kNone.
+inline uint32_t across(const Topology& topology, const uint32_t* indices, bool have_twins, size_t seed, uint32_t g,
+                       int k) {
+  if (have_twins) {  // the other face of a two-faced edge, run the other way (a manifold edge)
+    const size_t s = 3 * size_t(g) + k;
+    const uint32_t tw = topology.face_twins[s];
+    // A face before the seed has its plane or none (degenerate): it joins no
+    // group from this seed, so it is skipped before its loads.
+    if (tw == Topology::kNone || tw / 3 < seed || indices[tw] == indices[s]) return Topology::kNone;
+    return tw / 3;
+  }
+  const uint32_t e = topology.face_edges[3 * size_t(g) + k];
+  if (e == Topology::kNone || topology.edges[e].kind != EdgeKind::Manifold) return Topology::kNone;
+  const Edge& edge = topology.edges[e];
+  uint32_t h = topology.edge_faces[edge.first] >> 1;
+  if (h == g) h = topology.edge_faces[edge.first + 1] >> 1;
+  return h;
+}
+
+// The seed's coplanar group, grown over manifold edges: a face joins when its
+// normal is within cos_tol of the seed's and its vertices within dist_tol of
+// the seed's plane (n, d).
+void grow_group(const LocalPositions& local, const uint32_t* indices, const Topology& topology, bool have_twins,
+                size_t seed, uint32_t id, const double* n, double d, double cos_tol, double dist_tol,
+                std::vector<uint32_t>& queue, FacePlanes& r) {
+  queue.assign(1, uint32_t(seed));
+  for (size_t qi = 0; qi < queue.size(); ++qi) {
+    const uint32_t g = queue[qi];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t h = across(topology, indices, have_twins, seed, g, k);
+      if (h == Topology::kNone) continue;
+      if (r.face_plane[h] != FacePlanes::kNone) continue;
+      const double* m = &r.normals[3 * size_t(h)];
+      if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < cos_tol) continue;  // also rejects degenerate (0)
+      bool near = true;
+      for (int j = 0; j < 3 && near; ++j) {
+        double q[3];
+        local(indices[3 * size_t(h) + j], q);
+        near = std::fabs(n[0] * q[0] + n[1] * q[1] + n[2] * q[2] + d) <= dist_tol;
+      }
+      if (!near) continue;
+      r.face_plane[h] = id;
+      ++r.shared_faces;
+      queue.push_back(h);
+    }
+  }
+}
+
+}  // namespace
+
+FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                               const Topology& topology, const FacePlaneOptions& options) {
+  FacePlanes r;
+  r.face_plane.assign(triangle_count, FacePlanes::kNone);
+  r.normals.assign(triangle_count * 3, 0.0);
+  if (triangle_count == 0) return r;
+  local_frame(positions, indices, triangle_count, topology, r);
+  const LocalPositions local{positions, r.origin};
+  unit_normals(local, indices, triangle_count, topology, r);
 
   const double cos_tol = std::cos(options.coplanar_degrees * M_PI / 180.0);
   const double dist_tol = options.coplanar_distance * r.diagonal;
@@ -92,41 +158,7 @@ FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, 
     r.planes.push_back(float(n[0])), r.planes.push_back(float(n[1]));  // reserved: plain stores
     r.planes.push_back(float(n[2])), r.planes.push_back(float(d));
     r.face_plane[seed] = id;
-    if (!have_edges) continue;
-    queue.assign(1, uint32_t(seed));
-    for (size_t qi = 0; qi < queue.size(); ++qi) {
-      const uint32_t g = queue[qi];
-      for (int k = 0; k < 3; ++k) {
-        uint32_t h;
-        if (have_twins) {  // the other face of a two-faced edge, run the other way (a manifold edge)
-          const size_t s = 3 * size_t(g) + k;
-          const uint32_t tw = topology.face_twins[s];
-          // A face before the seed has its plane or none (degenerate): it
-          // joins no group now, so it is skipped before its loads.
-          if (tw == Topology::kNone || tw / 3 < seed || indices[tw] == indices[s]) continue;
-          h = tw / 3;
-        } else {
-          const uint32_t e = topology.face_edges[3 * size_t(g) + k];
-          if (e == Topology::kNone || topology.edges[e].kind != EdgeKind::Manifold) continue;
-          const Edge& edge = topology.edges[e];
-          h = topology.edge_faces[edge.first] >> 1;
-          if (h == g) h = topology.edge_faces[edge.first + 1] >> 1;
-        }
-        if (r.face_plane[h] != FacePlanes::kNone) continue;
-        const double* m = &r.normals[3 * size_t(h)];
-        if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < cos_tol) continue;  // also rejects degenerate (0)
-        bool near = true;
-        for (int j = 0; j < 3 && near; ++j) {
-          double q[3];
-          local(indices[3 * size_t(h) + j], q);
-          near = std::fabs(n[0] * q[0] + n[1] * q[1] + n[2] * q[2] + d) <= dist_tol;
-        }
-        if (!near) continue;
-        r.face_plane[h] = id;
-        ++r.shared_faces;
-        queue.push_back(h);
-      }
-    }
+    if (have_edges) grow_group(local, indices, topology, have_twins, seed, id, n, d, cos_tol, dist_tol, queue, r);
   }
   return r;
 }

@@ -1,5 +1,5 @@
 // focus_body.h (private): the convex-polytope steps of the focus body H
-// (seed 002_147d3d07b97c563e.txt, Sect. 4.1), used by compute_focus.cpp.
+// (Stamminger and Drettakis 2002, Sect. 4.1), used by compute_focus.cpp.
 //
 // A Polytope is a convex body as a list of convex polygons (flat vertex
 // coordinates + a vertex count per polygon), counter-clockwise seen from

@@ -1,6 +1,7 @@
 // Half-edge summary (geom/halfedge.h): from the edge table where every vertex
-// is a single fan; else OpenMesh's add_face replayed on the edge table (below);
-// OpenMesh itself only in the reference function. OpenMesh types stay in this file.
+// is a single fan; else OpenMesh's add_face replayed on the edge table (below).
+// No OpenMesh here: the tests hold this equal to OpenMesh itself
+// (tests/oracle/openmesh_halfedge.cpp).
 //
 // Why the table suffices there: OpenMesh's add_face refuses a face only at a
 // complex edge (the edge already has a face on that side: an inconsistent or
@@ -12,128 +13,76 @@
 // the holes are exactly the cycles of boundary edges.
 #include "geom/halfedge.h"
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Core/Utils/Property.hh>
 #include <algorithm>
-#include <mutex>
+#include <stdexcept>
 #include <vector>
 
 #include "work_count.h"
 
 namespace geom {
 
-HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count) {
-  using Mesh = OpenMesh::TriMesh_ArrayKernelT<>;
-  HalfedgeSummary s;
-  Mesh mesh;
-  std::vector<Mesh::VertexHandle> vh(positions.size());
-  for (size_t i = 0; i < vh.size(); ++i)
-    vh[i] = mesh.add_vertex(Mesh::Point(positions[i].x, positions[i].y, positions[i].z));
-  // add_face reports each refusal on OpenMesh's process-wide error stream; the
-  // summary counts them instead. Silenced once (toggling it back on would race
-  // between threads baking in parallel).
-  std::vector<uint32_t> around(positions.size(), 0);  // faces added at each vertex (for the work count)
-  uint64_t steps = 0;
-  static std::once_flag silenced;
-  std::call_once(silenced, [] { omerr().disable(); });
-  for (size_t f = 0; f < triangle_count; ++f) {
-    const uint32_t* v = indices + 3 * f;
-    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) {
-      ++s.skipped_faces;
-      continue;
-    }
-    steps += 1 + around[v[0]] + around[v[1]] + around[v[2]];
-    if (mesh.add_face(vh[v[0]], vh[v[1]], vh[v[2]]).is_valid()) {
-      ++s.added_faces;
-      ++around[v[0]], ++around[v[1]], ++around[v[2]];
-    } else {
-      ++s.refused_faces;
-    }
-  }
-  OpenMesh::HPropHandleT<bool> visited;
-  mesh.add_property(visited);
-  for (auto h : mesh.halfedges()) mesh.property(visited, h) = false;
-  for (auto h : mesh.halfedges()) {
-    if (!mesh.is_boundary(h) || mesh.property(visited, h)) continue;
-    ++s.boundary_loops;
-    auto g = h;
-    do {
-      mesh.property(visited, g) = true;
-      g = mesh.next_halfedge_handle(g);
-      ++steps;
-    } while (g != h && !mesh.property(visited, g));
-  }
-  detail::count_work(steps);
-  return s;
-}
-
 namespace {
 
 // Which corner of face `f` holds vertex `v`.
 inline int corner_of(const uint32_t* f, uint32_t v) { return f[0] == v ? 0 : f[1] == v ? 1 : 2; }
 
-// Walks the fan of each vertex through its manifold edges, corner to corner:
-// each corner is visited once. False where a vertex has a second fan.
-bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_count, const Topology& t) {
-  uint64_t steps = 0;
-  struct Count {  // added on every way out
-    uint64_t& steps;
-    ~Count() { detail::count_work(steps); }
-  } count{steps};
+// On the twins, one walk per vertex, forward only: a corner is named by the
+// slot of the edge leaving its vertex; from slot s out to its twin 3g + j,
+// which enters the vertex, so the vertex is g's corner j + 1 and the walk goes
+// on out through that slot. An open fan starts at the one corner whose
+// entering edge (slot k + 2) has no twin (its head) and ends at a boundary; a
+// closed one comes back to where it started. Each vertex walks from its head
+// if it has one (a second head is a second fan), else from any corner; every
+// vertex is a single fan exactly when the walks cover every corner.
+bool single_fans_on_twins(const uint32_t* indices, size_t triangle_count, size_t vertex_count, const Topology& t,
+                          uint64_t& steps) {
+  constexpr uint32_t kNone = Topology::kNone;
+  std::vector<uint32_t> start(vertex_count, kNone);
+  std::vector<uint8_t> headed(vertex_count, 0);
+  uint64_t corners = 0;
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (t.face_flags[f] & kFaceCollapsed) continue;
+    corners += 3;
+    const uint32_t* tw = t.face_twins.data() + 3 * f;
+    const uint32_t* v = indices + 3 * f;
+    for (uint32_t k = 0; k < 3; ++k) {
+      const uint32_t c = v[k], slot = uint32_t(3 * f) + k;
+      if (tw[k == 0 ? 2 : k - 1] == kNone) {
+        if (headed[c]) return false;
+        headed[c] = 1;
+        start[c] = slot;
+      } else if (start[c] == kNone) {
+        start[c] = slot;
+      }
+    }
+  }
+  uint64_t covered = 0;
+  for (size_t v = 0; v < vertex_count; ++v) {
+    const uint32_t s0 = start[v];
+    if (s0 == kNone) continue;
+    uint64_t n = 1;
+    for (uint32_t s = s0;;) {
+      const uint32_t tw = t.face_twins[s];
+      if (tw == kNone) break;
+      s = tw % 3 == 2 ? tw - 2 : tw + 1;
+      if (s == s0) break;
+      ++n;
+    }
+    covered += n;
+  }
+  steps += covered;
+  return covered == corners;
+}
+
+// Without twins: both ways round each vertex through the edge table.
+bool single_fans_on_edges(const uint32_t* indices, size_t triangle_count, size_t vertex_count, const Topology& t,
+                          uint64_t& steps) {
   auto other_face = [&](uint32_t e, uint32_t f) -> uint32_t {
     const Edge& edge = t.edges[e];
     if (edge.face_count != 2) return Topology::kNone;
     const uint32_t a = t.edge_faces[edge.first] >> 1, b = t.edge_faces[edge.first + 1] >> 1;
     return a == f ? b : a;
   };
-  if (t.face_twins.size() == 3 * triangle_count && t.stats.inconsistent_edges == 0) {
-    // On the twins, one walk per vertex, forward only: a corner is named by
-    // the slot of the edge leaving its vertex; from slot s out to its twin
-    // 3g + j, which enters the vertex, so the vertex is g's corner j + 1 and
-    // the walk goes on out through that slot. An open fan starts at the one
-    // corner whose entering edge (slot k + 2) has no twin (its head) and ends
-    // at a boundary; a closed one comes back to where it started. Each vertex
-    // walks from its head if it has one (a second head is a second fan), else
-    // from any corner; every vertex is a single fan exactly when the walks
-    // cover every corner.
-    constexpr uint32_t kNone = Topology::kNone;
-    std::vector<uint32_t> start(vertex_count, kNone);
-    std::vector<uint8_t> headed(vertex_count, 0);
-    uint64_t corners = 0;
-    for (size_t f = 0; f < triangle_count; ++f) {
-      if (t.face_flags[f] & kFaceCollapsed) continue;
-      corners += 3;
-      const uint32_t* tw = t.face_twins.data() + 3 * f;
-      const uint32_t* v = indices + 3 * f;
-      for (uint32_t k = 0; k < 3; ++k) {
-        const uint32_t c = v[k], slot = uint32_t(3 * f) + k;
-        if (tw[k == 0 ? 2 : k - 1] == kNone) {
-          if (headed[c]) return false;
-          headed[c] = 1;
-          start[c] = slot;
-        } else if (start[c] == kNone) {
-          start[c] = slot;
-        }
-      }
-    }
-    uint64_t covered = 0;
-    for (size_t v = 0; v < vertex_count; ++v) {
-      const uint32_t s0 = start[v];
-      if (s0 == kNone) continue;
-      uint64_t n = 1;
-      for (uint32_t s = s0;;) {
-        const uint32_t tw = t.face_twins[s];
-        if (tw == kNone) break;
-        s = tw % 3 == 2 ? tw - 2 : tw + 1;
-        if (s == s0) break;
-        ++n;
-      }
-      covered += n;
-    }
-    steps += covered;
-    return covered == corners;
-  }
   std::vector<uint8_t> seen(triangle_count, 0);  // bit k: corner k visited
   std::vector<uint8_t> fans(vertex_count, 0);
   for (size_t f0 = 0; f0 < triangle_count; ++f0) {
@@ -164,6 +113,17 @@ bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_c
   return true;
 }
 
+// Walks the fan of each vertex through its manifold edges, corner to corner:
+// each corner is visited once. False where a vertex has a second fan.
+bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_count, const Topology& t) {
+  uint64_t steps = 0;
+  const bool single = t.face_twins.size() == 3 * triangle_count && t.stats.inconsistent_edges == 0
+                          ? single_fans_on_twins(indices, triangle_count, vertex_count, t, steps)
+                          : single_fans_on_edges(indices, triangle_count, vertex_count, t, steps);
+  detail::count_work(steps);
+  return single;
+}
+
 // OpenMesh's PolyConnectivity::add_face (OpenMesh 9), step for step, on the
 // half-edges of the edge table: half-edge 2e runs edge e's v0 -> v1, 2e + 1
 // back; an edge exists once a face added it. What OpenMesh finds by walking
@@ -175,127 +135,175 @@ bool single_fans(const uint32_t* indices, size_t triangle_count, size_t vertex_c
 // fan to the other. So each face costs a constant, whatever the valences, and
 // the next / prev links, the vertices' half-edges and the refusals are
 // OpenMesh's own (tests/test_halfedge.cpp holds them equal on every mesh).
-HalfedgeSummary replay_add_face(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
-                                const Topology& t) {
-  const size_t vertex_count = positions.size();
-  constexpr uint32_t kNone = Topology::kNone;
-  const size_t hn = 2 * t.edges.size();
-  std::vector<uint32_t> next(hn, kNone), prev(hn, kNone);
-  // fan_end[h]: for h leaving a vertex, boundary, the start of a fan there:
-  // the fan's boundary half-edge entering the vertex; fan_start[h]: the reverse.
-  std::vector<uint32_t> fan_end(hn, kNone), fan_start(hn, kNone);
-  std::vector<uint8_t> face(hn, 0), exists(t.edges.size(), 0);
-  std::vector<uint32_t> out(vertex_count, kNone);  // OpenMesh's halfedge_handle(vertex)
-  HalfedgeSummary s;
-  uint64_t steps = 0;
-  auto boundary_vertex = [&](uint32_t v) { return out[v] == kNone || !face[out[v]]; };
-  // A link the replay needs and does not have would mean the fans' ends went
-  // wrong: never seen (the tests replay every mesh they have), but then
-  // OpenMesh itself answers rather than anything being read out of bounds.
-  auto lost = [&](uint32_t h) { return h >= hn; };
-  for (size_t f = 0; f < triangle_count; ++f) {
-    const uint32_t* v = indices + 3 * f;
-    if (t.face_flags[f] & kFaceCollapsed) {
-      ++s.skipped_faces;
-      continue;
-    }
-    ++steps;
-    uint32_t he[3];
-    bool fresh[3], ok = true;
+class AddFaceReplay {
+ public:
+  enum class Step { Added, Refused, Lost };
+
+  AddFaceReplay(size_t vertex_count, const Topology& t)
+      : t_(t),
+        hn_(2 * t.edges.size()),
+        next_(hn_, kNone),
+        prev_(hn_, kNone),
+        fan_end_(hn_, kNone),
+        fan_start_(hn_, kNone),
+        face_(hn_, 0),
+        exists_(t.edges.size(), 0),
+        out_(vertex_count, kNone) {}
+
+  // Adds face f (vertices v), as OpenMesh's add_face would: Lost where a
+  // link the replay needs is missing (a bug: the summary is refused).
+  Step add(size_t f, const uint32_t* v) {
+    cached_ = 0;
+    bool ok = true;
     for (int i = 0; i < 3 && ok; ++i) {
-      const uint32_t e = t.face_edges[3 * f + i];
-      he[i] = 2 * e + (v[i] == t.edges[e].v1 ? 1u : 0u);
-      fresh[i] = !exists[e];
-      ok = boundary_vertex(v[i]) && (fresh[i] || !face[he[i]]);  // complex vertex, complex edge
+      const uint32_t e = t_.face_edges[3 * f + i];
+      he_[i] = 2 * e + (v[i] == t_.edges[e].v1 ? 1u : 0u);
+      fresh_[i] = !exists_[e];
+      ok = boundary_vertex(v[i]) && (fresh_[i] || !face_[he_[i]]);  // complex vertex, complex edge
     }
-    std::pair<uint32_t, uint32_t> cache[18];
-    int cached = 0;
-    for (int i = 0; i < 3 && ok; ++i) {  // re-link patches
-      const int ii = (i + 1) % 3;
-      if (fresh[i] || fresh[ii] || next[he[i]] == he[ii]) continue;
-      const uint32_t inner_prev = he[i], inner_next = he[ii];
-      const uint32_t boundary_prev = fan_end[inner_next];  // the free gap: after inner_next's fan
-      if (lost(boundary_prev) || lost(next[boundary_prev]) || lost(next[inner_prev]) || lost(prev[inner_next]))
-        return summarize_halfedges(positions, indices, triangle_count);
-      if (boundary_prev == inner_prev) {
-        ok = false;  // "patch re-linking failed": the face would close a fan beside others
-        break;
-      }
-      cache[cached++] = {boundary_prev, next[inner_prev]};
-      cache[cached++] = {prev[inner_next], next[boundary_prev]};
-      cache[cached++] = {inner_prev, inner_next};
+    if (ok) {
+      const Step relinked = relink_patches();
+      if (relinked != Step::Added) return relinked;
     }
-    if (!ok) {
-      ++s.refused_faces;
-      continue;
-    }
-    ++s.added_faces;
-    for (int i = 0; i < 3; ++i) exists[he[i] >> 1] = 1;
+    if (!ok) return Step::Refused;
+    for (int i = 0; i < 3; ++i) exists_[he_[i] >> 1] = 1;
     uint32_t adjust_to[3] = {kNone, kNone, kNone};  // per corner: the fan end whose next becomes the vertex's
     bool adjust[3] = {false, false, false};
-    for (int i = 0; i < 3; ++i) {  // set up the half-edges, corner ii
-      const int ii = (i + 1) % 3;
-      const uint32_t vh = v[ii], inner_prev = he[i], inner_next = he[ii];
-      const uint32_t outer_prev = inner_next ^ 1u, outer_next = inner_prev ^ 1u;
-      const int id = (fresh[i] ? 1 : 0) | (fresh[ii] ? 2 : 0);
-      const uint32_t needed = id == 1   ? std::max(prev[inner_next], fan_end[inner_next])
-                              : id == 2 ? std::max(next[inner_prev], fan_start[inner_prev])
-                              : id == 3 ? (out[vh] == kNone ? 0 : prev[out[vh]])
-                                        : std::max(fan_start[inner_prev], fan_end[inner_next]);
-      if (lost(needed)) return summarize_halfedges(positions, indices, triangle_count);
-      if (id == 1) {  // prev new, next old: the face starts inner_next's fan anew
-        cache[cached++] = {prev[inner_next], outer_next};
-        out[vh] = outer_next;
-        const uint32_t in = fan_end[inner_next];
-        fan_end[outer_next] = in, fan_start[in] = outer_next;
-      } else if (id == 2) {  // next new, prev old: the face ends inner_prev's fan anew
-        cache[cached++] = {outer_prev, next[inner_prev]};
-        out[vh] = next[inner_prev];
-        const uint32_t start = fan_start[inner_prev];
-        fan_start[outer_prev] = start, fan_end[start] = outer_prev;
-      } else if (id == 3) {  // both new: a fan of its own, before the vertex's half-edge's
-        if (out[vh] == kNone) {
-          out[vh] = outer_next;
-          cache[cached++] = {outer_prev, outer_next};
-        } else {
-          cache[cached++] = {prev[out[vh]], outer_next};
-          cache[cached++] = {outer_prev, out[vh]};
-        }
-        fan_end[outer_next] = outer_prev, fan_start[outer_prev] = outer_next;
-      } else {  // both old: the face joins two fans (or closes one)
-        adjust[ii] = out[vh] == inner_next;
-        const uint32_t start = fan_start[inner_prev], end = fan_end[inner_next];
-        if (start != inner_next) {
-          fan_end[start] = end, fan_start[end] = start;
-          adjust_to[ii] = end;
-        }
-      }
-      if (id) cache[cached++] = {inner_prev, inner_next};
-      face[inner_prev] = 1;
-    }
-    for (int i = 0; i < cached; ++i) {
-      next[cache[i].first] = cache[i].second;
-      prev[cache[i].second] = cache[i].first;
+    for (int i = 0; i < 3; ++i)
+      if (!link_corner(i, v, adjust, adjust_to)) return Step::Lost;
+    for (int i = 0; i < cached_; ++i) {
+      next_[cache_[i].first] = cache_[i].second;
+      prev_[cache_[i].second] = cache_[i].first;
     }
     // adjust_outgoing_halfedge: round the vertex from inner_next, through its
     // fan, to the first boundary half-edge: the one after the fan's end; none
     // when the fan closed.
     for (int i = 0; i < 3; ++i)
-      if (adjust[i] && adjust_to[i] != kNone) out[v[i]] = next[adjust_to[i]];
+      if (adjust[i] && adjust_to[i] != kNone) out_[v[i]] = next_[adjust_to[i]];
+    return Step::Added;
   }
+
   // The holes: the cycles of next among the boundary half-edges, as OpenMesh walks them.
-  std::vector<uint8_t> visited(hn, 0);
-  for (uint32_t h = 0; h < hn; ++h) {
-    if (!exists[h >> 1] || face[h] || visited[h]) continue;
-    ++s.boundary_loops;
-    uint32_t g = h;
-    do {
-      visited[g] = 1;
-      g = next[g];
-      ++steps;
-    } while (g != h && g != kNone && !visited[g]);
+  uint64_t count_holes(uint64_t& steps) const {
+    uint64_t loops = 0;
+    std::vector<uint8_t> visited(hn_, 0);
+    for (uint32_t h = 0; h < hn_; ++h) {
+      if (!exists_[h >> 1] || face_[h] || visited[h]) continue;
+      ++loops;
+      uint32_t g = h;
+      do {
+        visited[g] = 1;
+        g = next_[g];
+        ++steps;
+      } while (g != h && g != kNone && !visited[g]);
+    }
+    return loops;
   }
-  detail::count_work(steps + hn);
+  size_t halfedge_count() const { return hn_; }
+
+ private:
+  static constexpr uint32_t kNone = Topology::kNone;
+
+  bool boundary_vertex(uint32_t v) const { return out_[v] == kNone || !face_[out_[v]]; }
+  // A link the replay needs and does not have would mean the fans' ends went
+  // wrong: never seen (the tests replay every mesh they have), but then
+  // the summary is refused rather than anything being read out of bounds.
+  bool lost(uint32_t h) const { return h >= hn_; }
+
+  // Re-link patches: Added when every pair of old consecutive half-edges can
+  // be made adjacent, Refused where the face would close a fan beside others.
+  Step relink_patches() {
+    for (int i = 0; i < 3; ++i) {
+      const int ii = (i + 1) % 3;
+      if (fresh_[i] || fresh_[ii] || next_[he_[i]] == he_[ii]) continue;
+      const uint32_t inner_prev = he_[i], inner_next = he_[ii];
+      const uint32_t boundary_prev = fan_end_[inner_next];  // the free gap: after inner_next's fan
+      if (lost(boundary_prev) || lost(next_[boundary_prev]) || lost(next_[inner_prev]) || lost(prev_[inner_next]))
+        return Step::Lost;
+      if (boundary_prev == inner_prev) return Step::Refused;  // "patch re-linking failed"
+      cache_[cached_++] = {boundary_prev, next_[inner_prev]};
+      cache_[cached_++] = {prev_[inner_next], next_[boundary_prev]};
+      cache_[cached_++] = {inner_prev, inner_next};
+    }
+    return Step::Added;
+  }
+
+  // Sets up the half-edges at corner ii = i + 1; false where a link is lost.
+  bool link_corner(int i, const uint32_t* v, bool adjust[3], uint32_t adjust_to[3]) {
+    const int ii = (i + 1) % 3;
+    const uint32_t vh = v[ii], inner_prev = he_[i], inner_next = he_[ii];
+    const uint32_t outer_prev = inner_next ^ 1u, outer_next = inner_prev ^ 1u;
+    const int id = (fresh_[i] ? 1 : 0) | (fresh_[ii] ? 2 : 0);
+    const uint32_t needed = id == 1   ? std::max(prev_[inner_next], fan_end_[inner_next])
+                            : id == 2 ? std::max(next_[inner_prev], fan_start_[inner_prev])
+                            : id == 3 ? (out_[vh] == kNone ? 0 : prev_[out_[vh]])
+                                      : std::max(fan_start_[inner_prev], fan_end_[inner_next]);
+    if (lost(needed)) return false;
+    if (id == 1) {  // prev new, next old: the face starts inner_next's fan anew
+      cache_[cached_++] = {prev_[inner_next], outer_next};
+      out_[vh] = outer_next;
+      const uint32_t in = fan_end_[inner_next];
+      fan_end_[outer_next] = in, fan_start_[in] = outer_next;
+    } else if (id == 2) {  // next new, prev old: the face ends inner_prev's fan anew
+      cache_[cached_++] = {outer_prev, next_[inner_prev]};
+      out_[vh] = next_[inner_prev];
+      const uint32_t start = fan_start_[inner_prev];
+      fan_start_[outer_prev] = start, fan_end_[start] = outer_prev;
+    } else if (id == 3) {  // both new: a fan of its own, before the vertex's half-edge's
+      if (out_[vh] == kNone) {
+        out_[vh] = outer_next;
+        cache_[cached_++] = {outer_prev, outer_next};
+      } else {
+        cache_[cached_++] = {prev_[out_[vh]], outer_next};
+        cache_[cached_++] = {outer_prev, out_[vh]};
+      }
+      fan_end_[outer_next] = outer_prev, fan_start_[outer_prev] = outer_next;
+    } else {  // both old: the face joins two fans (or closes one)
+      adjust[ii] = out_[vh] == inner_next;
+      const uint32_t start = fan_start_[inner_prev], end = fan_end_[inner_next];
+      if (start != inner_next) {
+        fan_end_[start] = end, fan_start_[end] = start;
+        adjust_to[ii] = end;
+      }
+    }
+    if (id) cache_[cached_++] = {inner_prev, inner_next};
+    face_[inner_prev] = 1;
+    return true;
+  }
+
+  const Topology& t_;
+  const size_t hn_;
+  std::vector<uint32_t> next_, prev_;
+  // fan_end_[h]: for h leaving a vertex, boundary, the start of a fan there:
+  // the fan's boundary half-edge entering the vertex; fan_start_[h]: the reverse.
+  std::vector<uint32_t> fan_end_, fan_start_;
+  std::vector<uint8_t> face_, exists_;
+  std::vector<uint32_t> out_;  // OpenMesh's halfedge_handle(vertex)
+  // The face being added: its half-edges, whether each is new, and the
+  // next / prev links it sets, applied together once it is accepted.
+  uint32_t he_[3];
+  bool fresh_[3];
+  std::pair<uint32_t, uint32_t> cache_[18];
+  int cached_ = 0;
+};
+
+HalfedgeSummary replay_add_face(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                                const Topology& t) {
+  AddFaceReplay replay(positions.size(), t);
+  HalfedgeSummary s;
+  uint64_t steps = 0;
+  for (size_t f = 0; f < triangle_count; ++f) {
+    if (t.face_flags[f] & kFaceCollapsed) {
+      ++s.skipped_faces;
+      continue;
+    }
+    ++steps;
+    const AddFaceReplay::Step step = replay.add(f, indices + 3 * f);
+    if (step == AddFaceReplay::Step::Lost) throw std::logic_error("the half-edge summary lost a link of its replay (a bug)");
+    ++(step == AddFaceReplay::Step::Added ? s.added_faces : s.refused_faces);
+  }
+  s.boundary_loops = replay.count_holes(steps);
+  detail::count_work(steps + replay.halfedge_count());
   return s;
 }
 

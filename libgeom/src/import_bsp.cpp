@@ -1,6 +1,6 @@
 // Quake 3 BSP import (IBSP version 46, as shipped in Debian's openarena-081-maps).
 //
-// Test bed of seed 004_3832d04cb6bd7525.txt (section 2): a map is a list of
+// The test bed of Arneson n.d. (Real-Time Shadows, Sect. 2): a map is a list of
 // models, model 0 the static world and the others brush models (doors, lifts);
 // each model is a range of faces of four types:
 //   1 polygon    convex planar polygon, triangulated by the map compiler:
@@ -183,9 +183,18 @@ const float* vertex_position(const Lump lumps[], size_t v, float out[3]) {
 
 bool finite3(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
-}  // namespace
+// What the checks of the lumps give the emission.
+struct BspMap {
+  Lump lumps[kLumpCount];
+  std::vector<int32_t> texture_flags;  // per shader
+  std::vector<Face> faces;
+  std::vector<uint32_t> face_model;  // per face: its model, or kNone
+  uint64_t polygon_faces = 0, mesh_faces = 0, patch_faces = 0, billboard_faces = 0, nodraw_faces = 0, sky_faces = 0;
+  uint64_t polygon_triangles = 0, mesh_triangles = 0, patch_triangles = 0, orphans = 0;
+};
 
-bool import_bsp(const ImportInput& in, Scene& out, std::string& error) {
+// The patch level asked for, the header's size, magic and version.
+bool check_header(const ImportInput& in, std::string& error) {
   const int level = in.options.patch_level;
   if (level < 1 || level > kMaxPatchLevel) {
     error = "patch level " + std::to_string(level) + " is out of range (1 to " + std::to_string(kMaxPatchLevel) + ")";
@@ -204,147 +213,187 @@ bool import_bsp(const ImportInput& in, Scene& out, std::string& error) {
     error = "BSP version " + std::to_string(i32(in.data + 4)) + " is not supported (expected 46, Quake 3)";
     return false;
   }
-  Lump lumps[kLumpCount];
-  if (!read_lumps(in, lumps, error)) return false;
+  return true;
+}
 
-  std::vector<int32_t> texture_flags(lumps[kTextures].count);
-  for (size_t t = 0; t < texture_flags.size(); ++t)
-    texture_flags[t] = i32(lumps[kTextures].data + kTextureSize * t + 64);
-
-  std::vector<Face> faces(lumps[kFaces].count);
-  uint64_t polygon_faces = 0, mesh_faces = 0, patch_faces = 0, billboard_faces = 0, nodraw_faces = 0, sky_faces = 0;
-  for (size_t f = 0; f < faces.size(); ++f) {
+// Every face read and checked, counted by type and shader flag.
+bool read_faces(BspMap& map, std::string& error) {
+  const Lump* lumps = map.lumps;
+  map.texture_flags.resize(lumps[kTextures].count);
+  for (size_t t = 0; t < map.texture_flags.size(); ++t)
+    map.texture_flags[t] = i32(lumps[kTextures].data + kTextureSize * t + 64);
+  map.faces.resize(lumps[kFaces].count);
+  for (size_t f = 0; f < map.faces.size(); ++f) {
     const unsigned char* p = lumps[kFaces].data + kFaceSize * f;
-    Face& face = faces[f];
+    Face& face = map.faces[f];
     face = {i32(p), i32(p + 8), i32(p + 12), i32(p + 16), i32(p + 20), i32(p + 24), i32(p + 96), i32(p + 100)};
     if (!check_face(f, face, lumps, error)) return false;
-    polygon_faces += face.type == kPolygon, patch_faces += face.type == kPatch;
-    mesh_faces += face.type == kMesh, billboard_faces += face.type == kBillboard;
-    nodraw_faces += (texture_flags[size_t(face.texture)] & kSurfNoDraw) != 0;
-    sky_faces += (texture_flags[size_t(face.texture)] & kSurfSky) != 0;
+    map.polygon_faces += face.type == kPolygon, map.patch_faces += face.type == kPatch;
+    map.mesh_faces += face.type == kMesh, map.billboard_faces += face.type == kBillboard;
+    map.nodraw_faces += (map.texture_flags[size_t(face.texture)] & kSurfNoDraw) != 0;
+    map.sky_faces += (map.texture_flags[size_t(face.texture)] & kSurfSky) != 0;
   }
+  return true;
+}
 
-  // Models: face ranges in bounds, each face in at most one model.
-  const size_t model_count = lumps[kModels].count;
+// Models: face ranges in bounds, each face in at most one model.
+bool read_models(BspMap& map, std::string& error) {
+  const size_t model_count = map.lumps[kModels].count;
   if (model_count == 0) {
     error = "the models lump is empty (a map has at least the world model)";
     return false;
   }
-  std::vector<uint32_t> face_model(faces.size(), TriangleSource::kNone);
+  map.face_model.assign(map.faces.size(), TriangleSource::kNone);
   for (size_t m = 0; m < model_count; ++m) {
-    const unsigned char* p = lumps[kModels].data + kModelSize * m;
+    const unsigned char* p = map.lumps[kModels].data + kModelSize * m;
     const int32_t first = i32(p + 24), count = i32(p + 28);
-    if (first < 0 || count < 0 || uint64_t(first) + uint64_t(count) > faces.size()) {
+    if (first < 0 || count < 0 || uint64_t(first) + uint64_t(count) > map.faces.size()) {
       error = "model " + std::to_string(m) + " uses faces " + std::to_string(first) + " to " +
-              std::to_string(int64_t(first) + count) + ", out of range (" + std::to_string(faces.size()) + " faces)";
+              std::to_string(int64_t(first) + count) + ", out of range (" + std::to_string(map.faces.size()) +
+              " faces)";
       return false;
     }
     for (size_t f = size_t(first); f < size_t(first) + size_t(count); ++f) {
-      if (face_model[f] != TriangleSource::kNone) {
-        error = "face " + std::to_string(f) + " belongs to both model " + std::to_string(face_model[f]) +
+      if (map.face_model[f] != TriangleSource::kNone) {
+        error = "face " + std::to_string(f) + " belongs to both model " + std::to_string(map.face_model[f]) +
                 " and model " + std::to_string(m);
         return false;
       }
-      face_model[f] = uint32_t(m);
+      map.face_model[f] = uint32_t(m);
     }
   }
+  return true;
+}
 
-  // The triangle total, before any allocation that depends on it.
-  auto emitted = [&](size_t f) {
-    const Face& face = faces[f];
-    return face_model[f] != TriangleSource::kNone && face.type != kBillboard &&
-           !(texture_flags[size_t(face.texture)] & kSurfNoDraw);
-  };
-  uint64_t polygon_triangles = 0, mesh_triangles = 0, patch_triangles = 0, orphans = 0;
-  for (size_t f = 0; f < faces.size(); ++f) {
-    orphans += face_model[f] == TriangleSource::kNone;
-    if (!emitted(f)) continue;
-    const Face& face = faces[f];
+// Whether face f gives triangles: in a model, not a billboard, its shader drawn.
+bool emitted(const BspMap& map, size_t f) {
+  const Face& face = map.faces[f];
+  return map.face_model[f] != TriangleSource::kNone && face.type != kBillboard &&
+         !(map.texture_flags[size_t(face.texture)] & kSurfNoDraw);
+}
+
+// The triangle total, before any allocation that depends on it; refused over the cap.
+bool count_triangles(const ImportInput& in, BspMap& map, uint64_t& total, std::string& error) {
+  const int level = in.options.patch_level;
+  for (size_t f = 0; f < map.faces.size(); ++f) {
+    map.orphans += map.face_model[f] == TriangleSource::kNone;
+    if (!emitted(map, f)) continue;
+    const Face& face = map.faces[f];
     if (face.type == kPolygon)
-      polygon_triangles += uint64_t(face.meshvert_count) / 3;
+      map.polygon_triangles += uint64_t(face.meshvert_count) / 3;
     else if (face.type == kMesh)
-      mesh_triangles += uint64_t(face.meshvert_count) / 3;
+      map.mesh_triangles += uint64_t(face.meshvert_count) / 3;
     else
-      patch_triangles += patch_triangle_count(face.width, face.height, level);
+      map.patch_triangles += patch_triangle_count(face.width, face.height, level);
   }
-  const uint64_t total = polygon_triangles + mesh_triangles + patch_triangles;
+  total = map.polygon_triangles + map.mesh_triangles + map.patch_triangles;
   const uint64_t cap = in.options.max_triangles ? in.options.max_triangles : kDefaultTriangleCap;
   if (total > cap) {
-    error = "would produce " + std::to_string(total) + " triangles (" + std::to_string(patch_triangles) +
+    error = "would produce " + std::to_string(total) + " triangles (" + std::to_string(map.patch_triangles) +
             " from patches at level " + std::to_string(level) + "), over the limit of " + std::to_string(cap);
     return false;
   }
+  return true;
+}
 
-  // Emit, model by model, face by face.
+// A patch face: its control points checked and tessellated at `level`.
+bool emit_patch(const BspMap& map, size_t f, int level, const TriangleSource& source, std::vector<float>& control,
+                Scene& out, std::string& error) {
+  const Face& face = map.faces[f];
+  control.resize(size_t(face.vertex_count) * 3);
+  for (size_t k = 0; k < size_t(face.vertex_count); ++k) {
+    if (!finite3(vertex_position(map.lumps, size_t(face.vertex) + k, &control[3 * k]))) {
+      error = face_name(f, face) + " control point " + std::to_string(k) + " has a non-finite coordinate";
+      return false;
+    }
+  }
+  const size_t base = out.vertex_count();
+  if (base + patch_columns(face.width, level) * patch_rows(face.height, level) > 0xffffffffu) {
+    error = "more than 2^32 vertices";
+    return false;
+  }
+  tessellate_patch(control.data(), 3, face.width, face.height, level, out.positions);
+  const size_t before = out.indices.size();
+  patch_grid_triangles(uint32_t(patch_columns(face.width, level)), uint32_t(patch_rows(face.height, level)),
+                       uint32_t(base), out.indices);
+  out.sources.insert(out.sources.end(), (out.indices.size() - before) / 3, source);
+  return true;
+}
+
+// A polygon or mesh face: its mesh-vertex triangles, each map vertex stored
+// once (`remap`), the winding turned from the file's clockwise.
+bool emit_mesh_face(const BspMap& map, size_t f, const TriangleSource& source, std::vector<uint32_t>& remap, Scene& out,
+                    std::string& error) {
+  const Face& face = map.faces[f];
+  for (int32_t k = 0; k < face.meshvert_count; k += 3) {
+    uint32_t tri[3];
+    for (int j = 0; j < 3; ++j) {
+      const size_t v =
+          size_t(face.vertex) + size_t(i32(map.lumps[kMeshVerts].data + 4 * (size_t(face.meshvert) + k + j)));
+      if (remap[v] == TriangleSource::kNone) {
+        float p[3];
+        if (!finite3(vertex_position(map.lumps, v, p))) {
+          error = face_name(f, face) + " uses vertex " + std::to_string(v) + " with a non-finite coordinate";
+          return false;
+        }
+        remap[v] = uint32_t(out.vertex_count());
+        out.positions.insert(out.positions.end(), p, p + 3);
+      }
+      tri[j] = remap[v];
+    }
+    out.indices.insert(out.indices.end(), {tri[0], tri[2], tri[1]});  // clockwise in the file
+    out.sources.push_back(source);
+  }
+  return true;
+}
+
+// Emit, model by model, face by face.
+bool emit_models(const ImportInput& in, const BspMap& map, uint64_t total, Scene& out, std::string& error) {
   const uint32_t file = 0;
-  std::vector<uint32_t> remap(lumps[kVertexes].count, TriangleSource::kNone);
+  const int level = in.options.patch_level;
+  std::vector<uint32_t> remap(map.lumps[kVertexes].count, TriangleSource::kNone);
   out.indices.reserve(size_t(total) * 3);
   out.sources.reserve(size_t(total));
   std::vector<float> control;
-  for (size_t m = 0; m < model_count; ++m) {
-    const unsigned char* mp = lumps[kModels].data + kModelSize * m;
+  for (size_t m = 0; m < map.lumps[kModels].count; ++m) {
+    const unsigned char* mp = map.lumps[kModels].data + kModelSize * m;
     const size_t first = size_t(i32(mp + 24)), count = size_t(i32(mp + 28));
     for (size_t f = first; f < first + count; ++f) {
-      if (!emitted(f)) continue;
-      const Face& face = faces[f];
+      if (!emitted(map, f)) continue;
       const TriangleSource source{file, uint32_t(m), uint32_t(f), TriangleSource::kNone};
-      if (face.type == kPatch) {
-        control.resize(size_t(face.vertex_count) * 3);
-        for (size_t k = 0; k < size_t(face.vertex_count); ++k) {
-          if (!finite3(vertex_position(lumps, size_t(face.vertex) + k, &control[3 * k]))) {
-            error = face_name(f, face) + " control point " + std::to_string(k) + " has a non-finite coordinate";
-            return false;
-          }
-        }
-        const size_t base = out.vertex_count();
-        if (base + patch_columns(face.width, level) * patch_rows(face.height, level) > 0xffffffffu) {
-          error = "more than 2^32 vertices";
-          return false;
-        }
-        tessellate_patch(control.data(), 3, face.width, face.height, level, out.positions);
-        const size_t before = out.indices.size();
-        patch_grid_triangles(uint32_t(patch_columns(face.width, level)), uint32_t(patch_rows(face.height, level)),
-                             uint32_t(base), out.indices);
-        out.sources.insert(out.sources.end(), (out.indices.size() - before) / 3, source);
-        continue;
-      }
-      for (int32_t k = 0; k < face.meshvert_count; k += 3) {
-        uint32_t tri[3];
-        for (int j = 0; j < 3; ++j) {
-          const size_t v =
-              size_t(face.vertex) + size_t(i32(lumps[kMeshVerts].data + 4 * (size_t(face.meshvert) + k + j)));
-          if (remap[v] == TriangleSource::kNone) {
-            float p[3];
-            if (!finite3(vertex_position(lumps, v, p))) {
-              error = face_name(f, face) + " uses vertex " + std::to_string(v) + " with a non-finite coordinate";
-              return false;
-            }
-            remap[v] = uint32_t(out.vertex_count());
-            out.positions.insert(out.positions.end(), p, p + 3);
-          }
-          tri[j] = remap[v];
-        }
-        out.indices.insert(out.indices.end(), {tri[0], tri[2], tri[1]});  // clockwise in the file
-        out.sources.push_back(source);
-      }
+      const bool ok = map.faces[f].type == kPatch ? emit_patch(map, f, level, source, control, out, error)
+                                                  : emit_mesh_face(map, f, source, remap, out, error);
+      if (!ok) return false;
     }
   }
+  return true;
+}
 
-  out.source_counts = {{"polygon.faces", polygon_faces},
-                       {"polygon.triangles", polygon_triangles},
-                       {"mesh.faces", mesh_faces},
-                       {"mesh.triangles", mesh_triangles},
-                       {"patch.faces", patch_faces},
-                       {"patch.triangles", patch_triangles},
-                       {"billboard.faces", billboard_faces},
-                       {"nodraw.faces", nodraw_faces},
-                       {"sky.faces", sky_faces}};
-  if (billboard_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(billboard_faces) + " billboard faces skipped");
-  if (nodraw_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(nodraw_faces) +
+}  // namespace
+
+bool import_bsp(const ImportInput& in, Scene& out, std::string& error) {
+  if (!check_header(in, error)) return false;
+  BspMap map;
+  uint64_t total = 0;
+  if (!read_lumps(in, map.lumps, error) || !read_faces(map, error) || !read_models(map, error) ||
+      !count_triangles(in, map, total, error) || !emit_models(in, map, total, out, error))
+    return false;
+  out.source_counts = {{"polygon.faces", map.polygon_faces},
+                       {"polygon.triangles", map.polygon_triangles},
+                       {"mesh.faces", map.mesh_faces},
+                       {"mesh.triangles", map.mesh_triangles},
+                       {"patch.faces", map.patch_faces},
+                       {"patch.triangles", map.patch_triangles},
+                       {"billboard.faces", map.billboard_faces},
+                       {"nodraw.faces", map.nodraw_faces},
+                       {"sky.faces", map.sky_faces}};
+  if (map.billboard_faces)
+    out.warnings.push_back(in.name + ": " + std::to_string(map.billboard_faces) + " billboard faces skipped");
+  if (map.nodraw_faces)
+    out.warnings.push_back(in.name + ": " + std::to_string(map.nodraw_faces) +
                            " faces with a never-drawn shader (SURF_NODRAW) skipped");
-  if (orphans) out.warnings.push_back(in.name + ": " + std::to_string(orphans) + " faces belong to no model, skipped");
+  if (map.orphans)
+    out.warnings.push_back(in.name + ": " + std::to_string(map.orphans) + " faces belong to no model, skipped");
   return true;
 }
 

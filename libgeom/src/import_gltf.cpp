@@ -58,10 +58,8 @@ bool is_regular_file(const std::string& path, uint64_t* size) {
   return true;
 }
 
-// Checks what tinygltf would otherwise find late or report vaguely: the asset
-// version, required extensions, every buffer's source and size. Then removes
-// what the importer does not read and takes the Draco extensions out.
-void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max_bytes, SideTable& side) {
+// The JSON's shape, the asset version, the extensions it requires.
+void check_root(Json& doc) {
   if (!doc.is_object()) refuse("the JSON root is not an object");
   for (const char* key : {"buffers", "bufferViews", "accessors", "meshes", "nodes", "scenes", "extensionsRequired"})
     if (doc.contains(key) && !doc[key].is_array()) refuse(std::string("\"") + key + "\" is not an array");
@@ -75,87 +73,131 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
     for (const Json& e : *req)
       if (e.is_string() && !extension_allowed(e.get<std::string>()))
         refuse("the file requires extension " + e.get<std::string>() + ", which this importer does not support");
+}
 
+// Buffer i: its byte length (added to `total`, refused over max_bytes) and
+// its source: none (a one-byte stand-in), the GLB's BIN chunk, a data URI
+// (decoded here into the side table) or an external file (checked, confined).
+void sanitize_buffer(Json& b, size_t i, const Container& c, const ImportInput& in, uint64_t max_bytes, uint64_t& total,
+                     SideTable& side) {
+  std::string name = "buffer " + str(i);
+  if (!b.is_object()) refuse(name + " is not a JSON object");
+  auto bl = b.find("byteLength");
+  if (bl == b.end() || !bl->is_number_unsigned())
+    refuse(name + ": byteLength is missing or not a non-negative integer");
+  uint64_t length = bl->get<uint64_t>();
+  total += length;
+  if (total > max_bytes) refuse("the buffers claim " + str(total) + " bytes, over the limit of " + str(max_bytes));
+  auto uri = b.find("uri");
+  side.buffer_has_data.push_back(1);
+  if ((uri == b.end() && !(c.glb && i == 0)) || length == 0) {
+    // No data (a placeholder some extension fills, or empty): tinygltf gets a
+    // one-byte stand-in; a bufferView that uses it is refused later.
+    side.buffer_has_data.back() = 0;
+    b = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
+    return;
+  }
+  if (uri == b.end()) {
+    if (!c.bin) refuse(name + " has no uri, but the GLB has no BIN chunk");
+    if (length > c.bin_size)
+      refuse(name + ": byteLength " + str(length) + " is larger than the GLB BIN chunk (" + str(c.bin_size) +
+             " bytes)");
+    return;
+  }
+  if (!uri->is_string()) refuse(name + ": uri is not a string");
+  const std::string& u = uri->get_ref<const std::string&>();
+  if (u.rfind("data:", 0) == 0) {
+    // Decoded here (tinygltf's base64 decoder looks each character up in a
+    // string, and the JSON handed to it then carries one byte instead).
+    std::vector<unsigned char> bytes = decode_data_uri(u, name);
+    if (bytes.size() != length)
+      refuse(name + ": its data URI holds " + str(bytes.size()) + " bytes, but byteLength says " + str(length));
+    side.data_uri[i] = std::move(bytes);
+    b = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
+    return;
+  }
+  // One decoding (RFC 3986: '+' is a '+') for reading and for the depfile;
+  // confined to the asset's folder unless allowed (uri.h).
+  std::string path;
+  const std::string why = resolve_external_uri(in.base_dir, u, in.options.allow_outside_uris, path);
+  if (!why.empty()) refuse(name + ": " + why);
+  uint64_t size = 0;
+  if (!is_regular_file(path, &size)) refuse(name + ": cannot open '" + u + "' (looked for " + path + ")");
+  if (size != length) refuse(name + ": '" + u + "' is " + str(size) + " bytes, but byteLength says " + str(length));
+  // tinygltf decodes with '+' as a space: hand it a URI that decodes to `path`.
+  std::string tiny_uri;
+  for (char ch : percent_decode(u)) tiny_uri += ch == '%' ? "%25" : ch == '+' ? "%2B" : std::string(1, ch);
+  b["uri"] = tiny_uri;
+  side.external.insert(path);
+}
+
+// Lights: taken out of the JSON, read leniently (problems become warnings).
+void take_lights(Json& doc, SideTable& side) {
+  auto ext = doc.find("extensions");
+  if (ext == doc.end() || !ext->is_object()) return;
+  auto kl = ext->find("KHR_lights_punctual");
+  if (kl != ext->end() && kl->is_object() && kl->contains("lights") && (*kl)["lights"].is_array()) {
+    auto number = [](const Json& o, const char* key) {
+      return o.is_object() && o.contains(key) && o[key].is_number() ? o[key].get<double>() : NAN;
+    };
+    for (const Json& l : (*kl)["lights"]) {
+      LightDef d;
+      if (l.is_object()) {
+        if (l.contains("type") && l["type"].is_string()) d.type = l["type"].get<std::string>();
+        if (l.contains("name") && l["name"].is_string()) d.name = l["name"].get<std::string>();
+        if (l.contains("color") && l["color"].is_array())
+          for (const Json& c : l["color"]) d.color.push_back(c.is_number() ? c.get<double>() : -1.0);
+        d.intensity = number(l, "intensity");
+        d.range = number(l, "range");
+        if (l.contains("spot"))
+          d.inner = number(l["spot"], "innerConeAngle"), d.outer = number(l["spot"], "outerConeAngle");
+      }
+      side.lights.push_back(std::move(d));
+    }
+  }
+  if (kl != ext->end()) ext->erase(kl);
+}
+
+// Primitive p of mesh m: its indices accessor and its Draco extension taken
+// into the side table.
+void take_primitive(Json& prim, size_t m, size_t p, SideTable& side) {
+  if (!prim.is_object()) return;
+  // Indices are read here (tinygltf refuses an indices accessor without a
+  // bufferView, which is valid glTF: zeros plus sparse values).
+  if (auto ind = prim.find("indices"); ind != prim.end()) {
+    if (!ind->is_number_integer())
+      refuse("mesh " + str(m) + " primitive " + str(p) + ": indices is not an accessor index");
+    side.indices[{int(m), int(p)}] = ind->get<int>();
+    prim.erase(ind);
+  }
+  auto ext = prim.find("extensions");
+  if (ext == prim.end() || !ext->is_object()) return;
+  auto dr = ext->find("KHR_draco_mesh_compression");
+  if (dr == ext->end()) return;
+  std::string name = "mesh " + str(m) + " primitive " + str(p) + ": KHR_draco_mesh_compression";
+  DracoRef ref;
+  if (!dr->is_object() || !dr->contains("bufferView") || !(*dr)["bufferView"].is_number_integer())
+    refuse(name + " has no bufferView");
+  ref.buffer_view = (*dr)["bufferView"].get<int>();
+  auto attrs = dr->find("attributes");
+  if (attrs == dr->end() || !attrs->is_object()) refuse(name + " has no attributes");
+  if (auto pos = attrs->find("POSITION"); pos != attrs->end()) {
+    if (!pos->is_number_integer()) refuse(name + ": attributes.POSITION is not an integer");
+    ref.position_id = pos->get<int>();
+  }
+  side.draco[{int(m), int(p)}] = ref;
+  ext->erase(dr);
+}
+
+// Checks what tinygltf would otherwise find late or report vaguely: the asset
+// version, required extensions, every buffer's source and size. Then removes
+// what the importer does not read and takes the Draco extensions out.
+void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max_bytes, SideTable& side) {
+  check_root(doc);
   uint64_t total = 0;
-  if (auto buffers = doc.find("buffers"); buffers != doc.end()) {
-    for (size_t i = 0; i < buffers->size(); ++i) {
-      Json& b = (*buffers)[i];
-      std::string name = "buffer " + str(i);
-      if (!b.is_object()) refuse(name + " is not a JSON object");
-      auto bl = b.find("byteLength");
-      if (bl == b.end() || !bl->is_number_unsigned())
-        refuse(name + ": byteLength is missing or not a non-negative integer");
-      uint64_t length = bl->get<uint64_t>();
-      total += length;
-      if (total > max_bytes) refuse("the buffers claim " + str(total) + " bytes, over the limit of " + str(max_bytes));
-      auto uri = b.find("uri");
-      side.buffer_has_data.push_back(1);
-      if ((uri == b.end() && !(c.glb && i == 0)) || length == 0) {
-        // No data (a placeholder some extension fills, or empty): tinygltf gets a
-        // one-byte stand-in; a bufferView that uses it is refused later.
-        side.buffer_has_data.back() = 0;
-        b = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
-        continue;
-      }
-      if (uri == b.end()) {
-        if (!c.bin) refuse(name + " has no uri, but the GLB has no BIN chunk");
-        if (length > c.bin_size)
-          refuse(name + ": byteLength " + str(length) + " is larger than the GLB BIN chunk (" + str(c.bin_size) +
-                 " bytes)");
-        continue;
-      }
-      if (!uri->is_string()) refuse(name + ": uri is not a string");
-      const std::string& u = uri->get_ref<const std::string&>();
-      if (u.rfind("data:", 0) == 0) {
-        // Decoded here (tinygltf's base64 decoder looks each character up in a
-        // string, and the JSON handed to it then carries one byte instead).
-        std::vector<unsigned char> bytes = decode_data_uri(u, name);
-        if (bytes.size() != length)
-          refuse(name + ": its data URI holds " + str(bytes.size()) + " bytes, but byteLength says " + str(length));
-        side.data_uri[i] = std::move(bytes);
-        b = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
-        continue;
-      }
-      // One decoding (RFC 3986: '+' is a '+') for reading and for the depfile;
-      // confined to the asset's folder unless allowed (uri.h).
-      std::string path;
-      const std::string why = resolve_external_uri(in.base_dir, u, in.options.allow_outside_uris, path);
-      if (!why.empty()) refuse(name + ": " + why);
-      uint64_t size = 0;
-      if (!is_regular_file(path, &size)) refuse(name + ": cannot open '" + u + "' (looked for " + path + ")");
-      if (size != length) refuse(name + ": '" + u + "' is " + str(size) + " bytes, but byteLength says " + str(length));
-      // tinygltf decodes with '+' as a space: hand it a URI that decodes to `path`.
-      std::string tiny_uri;
-      for (char ch : percent_decode(u)) tiny_uri += ch == '%' ? "%25" : ch == '+' ? "%2B" : std::string(1, ch);
-      b["uri"] = tiny_uri;
-      side.external.insert(path);
-    }
-  }
-
-  // Lights: taken out of the JSON, read leniently (problems become warnings).
-  if (auto ext = doc.find("extensions"); ext != doc.end() && ext->is_object()) {
-    auto kl = ext->find("KHR_lights_punctual");
-    if (kl != ext->end() && kl->is_object() && kl->contains("lights") && (*kl)["lights"].is_array()) {
-      auto number = [](const Json& o, const char* key) {
-        return o.is_object() && o.contains(key) && o[key].is_number() ? o[key].get<double>() : NAN;
-      };
-      for (const Json& l : (*kl)["lights"]) {
-        LightDef d;
-        if (l.is_object()) {
-          if (l.contains("type") && l["type"].is_string()) d.type = l["type"].get<std::string>();
-          if (l.contains("name") && l["name"].is_string()) d.name = l["name"].get<std::string>();
-          if (l.contains("color") && l["color"].is_array())
-            for (const Json& c : l["color"]) d.color.push_back(c.is_number() ? c.get<double>() : -1.0);
-          d.intensity = number(l, "intensity");
-          d.range = number(l, "range");
-          if (l.contains("spot"))
-            d.inner = number(l["spot"], "innerConeAngle"), d.outer = number(l["spot"], "outerConeAngle");
-        }
-        side.lights.push_back(std::move(d));
-      }
-    }
-    if (kl != ext->end()) ext->erase(kl);
-  }
+  if (auto buffers = doc.find("buffers"); buffers != doc.end())
+    for (size_t i = 0; i < buffers->size(); ++i) sanitize_buffer((*buffers)[i], i, c, in, max_bytes, total, side);
+  take_lights(doc, side);
 
   // Not geometry: never loaded, never able to refuse the file.
   for (const char* key : {"images", "textures", "samplers", "materials", "animations", "skins", "cameras"})
@@ -164,40 +206,12 @@ void sanitize(Json& doc, const Container& c, const ImportInput& in, uint64_t max
   if (auto meshes = doc.find("meshes"); meshes != doc.end()) {
     for (size_t m = 0; m < meshes->size(); ++m) {
       Json& mesh = (*meshes)[m];
-      // Required by glTF 2.0 (5.23): a mesh without them used to bake empty.
+      // Required by glTF 2.0 (5.23); a mesh without them would bake empty.
       if (!mesh.is_object()) refuse("mesh " + str(m) + " is not a JSON object");
       if (!mesh.contains("primitives") || !mesh["primitives"].is_array())
         refuse("mesh " + str(m) + ": \"primitives\" is missing or not an array");
       Json& prims = mesh["primitives"];
-      for (size_t p = 0; p < prims.size(); ++p) {
-        Json& prim = prims[p];
-        if (!prim.is_object()) continue;
-        // Indices are read here (tinygltf refuses an indices accessor without a
-        // bufferView, which is valid glTF: zeros plus sparse values).
-        if (auto ind = prim.find("indices"); ind != prim.end()) {
-          if (!ind->is_number_integer())
-            refuse("mesh " + str(m) + " primitive " + str(p) + ": indices is not an accessor index");
-          side.indices[{int(m), int(p)}] = ind->get<int>();
-          prim.erase(ind);
-        }
-        auto ext = prim.find("extensions");
-        if (ext == prim.end() || !ext->is_object()) continue;
-        auto dr = ext->find("KHR_draco_mesh_compression");
-        if (dr == ext->end()) continue;
-        std::string name = "mesh " + str(m) + " primitive " + str(p) + ": KHR_draco_mesh_compression";
-        DracoRef ref;
-        if (!dr->is_object() || !dr->contains("bufferView") || !(*dr)["bufferView"].is_number_integer())
-          refuse(name + " has no bufferView");
-        ref.buffer_view = (*dr)["bufferView"].get<int>();
-        auto attrs = dr->find("attributes");
-        if (attrs == dr->end() || !attrs->is_object()) refuse(name + " has no attributes");
-        if (auto pos = attrs->find("POSITION"); pos != attrs->end()) {
-          if (!pos->is_number_integer()) refuse(name + ": attributes.POSITION is not an integer");
-          ref.position_id = pos->get<int>();
-        }
-        side.draco[{int(m), int(p)}] = ref;
-        ext->erase(dr);
-      }
+      for (size_t p = 0; p < prims.size(); ++p) take_primitive(prims[p], m, p, side);
     }
   }
 }

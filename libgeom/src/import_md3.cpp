@@ -1,6 +1,6 @@
 // Quake 3 MD3 model import (IDP3 version 15, as in Debian's openarena-081-players).
 //
-// Seed 004_3832d04cb6bd7525.txt, section 2.5: a model is several triangle
+// Arneson n.d. (Real-Time Shadows), Sect. 2.5: a model is several triangle
 // surfaces, each stored once per animation frame. Imported: every surface at
 // frame ImportOptions::md3_frame (default 0, the first), vertex positions
 // int16 times the format's fixed-point scale 1/64 (MD3_XYZ_SCALE), in model
@@ -51,9 +51,9 @@ bool span_inside(int64_t offset, int64_t count, uint64_t record, uint64_t limit)
   return uint64_t(count) <= (limit - uint64_t(offset)) / record;
 }
 
-}  // namespace
-
-bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
+// The model's header: magic, version, the frame asked for, the surfaces' span.
+bool read_header(const ImportInput& in, int32_t& frames, int32_t& surfaces, int32_t& surface_offset,
+                 std::string& error) {
   if (in.size < kHeaderSize) {
     error = "truncated: " + std::to_string(in.size) + " bytes, shorter than the 108-byte MD3 header";
     return false;
@@ -66,7 +66,7 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
     error = "MD3 version " + std::to_string(i32(in.data + 4)) + " is not supported (expected 15)";
     return false;
   }
-  const int32_t frames = i32(in.data + 76), surfaces = i32(in.data + 84), surface_offset = i32(in.data + 100);
+  frames = i32(in.data + 76), surfaces = i32(in.data + 84), surface_offset = i32(in.data + 100);
   const int frame = in.options.md3_frame;
   if (frames <= 0) {
     error = "the model has " + std::to_string(frames) + " frames";
@@ -82,8 +82,13 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
             " do not fit in the file (" + std::to_string(in.size) + " bytes)";
     return false;
   }
-  // What the surfaces claim, before anything is allocated: surfaces may share
-  // their triangle bytes, so a small file can claim millions (issue 15).
+  return true;
+}
+
+// What the surfaces claim, before anything is allocated: surfaces may share
+// their triangle bytes, so a small file can claim millions. Refused over the
+// triangle limit or the memory limit; the claimed triangles are reserved.
+bool check_claims(const ImportInput& in, int32_t surfaces, int32_t surface_offset, Scene& out, std::string& error) {
   uint64_t claimed_triangles = 0, claimed_vertices = 0;
   for (uint64_t at = uint64_t(surface_offset), s = 0; s < uint64_t(surfaces); ++s) {
     if (!span_inside(int64_t(at), 1, kSurfaceHeaderSize, in.size)) break;  // refused below
@@ -111,67 +116,81 @@ bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
   }
   out.indices.reserve(out.indices.size() + 3 * size_t(claimed_triangles));
   out.sources.reserve(out.sources.size() + size_t(claimed_triangles));
+  return true;
+}
 
-  uint64_t at = uint64_t(surface_offset);
-  for (int32_t s = 0; s < surfaces; ++s) {
-    const std::string name = "surface " + std::to_string(s);
-    if (!span_inside(int64_t(at), 1, kSurfaceHeaderSize, in.size)) {
-      error = name + " header at offset " + std::to_string(at) + " lies outside the file";
-      return false;
-    }
-    const unsigned char* sp = in.data + at;
-    const uint64_t room = in.size - at;  // bytes from the surface start to the end of the file
-    if (std::memcmp(sp, "IDP3", 4) != 0) {
-      error = name + " at offset " + std::to_string(at) + " has no 'IDP3' magic";
-      return false;
-    }
-    const int32_t surface_frames = i32(sp + 72), vertices = i32(sp + 80), triangles = i32(sp + 84);
-    const int32_t tri_offset = i32(sp + 88), xyz_offset = i32(sp + 100), end_offset = i32(sp + 104);
-    if (surface_frames != frames) {
-      error = name + " has " + std::to_string(surface_frames) + " frames, the model " + std::to_string(frames);
-      return false;
-    }
-    if (!span_inside(tri_offset, triangles, 12, room)) {
-      error = name + ": " + std::to_string(triangles) + " triangles at offset " + std::to_string(tri_offset) +
-              " lie outside the file";
-      return false;
-    }
-    if (vertices < 0 || !span_inside(xyz_offset, int64_t(frames) * vertices, kVertexSize, room)) {
-      error = name + ": " + std::to_string(frames) + " frames of " + std::to_string(vertices) + " vertices at offset " +
-              std::to_string(xyz_offset) + " lie outside the file";
-      return false;
-    }
-    if (end_offset < int32_t(kSurfaceHeaderSize) || uint64_t(end_offset) > room) {
-      error = name + " ends at offset " + std::to_string(end_offset) + " (relative), outside [108, " +
-              std::to_string(room) + "]";
-      return false;
-    }
-    const size_t base = out.vertex_count();
-    if (base + size_t(vertices) > 0xffffffffu) {
-      error = "more than 2^32 vertices";
-      return false;
-    }
-    const unsigned char* tp = sp + tri_offset;
-    for (int32_t t = 0; t < triangles; ++t) {
-      int32_t v[3] = {i32(tp + 12 * size_t(t)), i32(tp + 12 * size_t(t) + 4), i32(tp + 12 * size_t(t) + 8)};
-      for (int j = 0; j < 3; ++j) {
-        if (v[j] < 0 || v[j] >= vertices) {
-          error = name + " triangle " + std::to_string(t) + " uses vertex " + std::to_string(v[j]) +
-                  ", out of range (" + std::to_string(vertices) + " vertices)";
-          return false;
-        }
-      }
-      out.indices.insert(out.indices.end(),
-                         {uint32_t(base + size_t(v[0])), uint32_t(base + size_t(v[2])), uint32_t(base + size_t(v[1]))});
-      out.sources.push_back({0, uint32_t(s), TriangleSource::kNone, TriangleSource::kNone});
-    }
-    const unsigned char* vp = sp + xyz_offset + size_t(frame) * size_t(vertices) * kVertexSize;
-    out.positions.reserve(out.positions.size() + size_t(vertices) * 3);
-    for (int32_t v = 0; v < vertices; ++v) {
-      for (int k = 0; k < 3; ++k) out.positions.push_back(float(i16(vp + kVertexSize * size_t(v) + 2 * k)) * kXyzScale);
-    }
-    at += uint64_t(end_offset);
+// Surface s at offset `at`: its triangles and the asked-for frame's vertices;
+// `at` moves to the next surface.
+bool read_surface(const ImportInput& in, int32_t s, int32_t frames, uint64_t& at, Scene& out, std::string& error) {
+  const std::string name = "surface " + std::to_string(s);
+  if (!span_inside(int64_t(at), 1, kSurfaceHeaderSize, in.size)) {
+    error = name + " header at offset " + std::to_string(at) + " lies outside the file";
+    return false;
   }
+  const unsigned char* sp = in.data + at;
+  const uint64_t room = in.size - at;  // bytes from the surface start to the end of the file
+  if (std::memcmp(sp, "IDP3", 4) != 0) {
+    error = name + " at offset " + std::to_string(at) + " has no 'IDP3' magic";
+    return false;
+  }
+  const int32_t surface_frames = i32(sp + 72), vertices = i32(sp + 80), triangles = i32(sp + 84);
+  const int32_t tri_offset = i32(sp + 88), xyz_offset = i32(sp + 100), end_offset = i32(sp + 104);
+  if (surface_frames != frames) {
+    error = name + " has " + std::to_string(surface_frames) + " frames, the model " + std::to_string(frames);
+    return false;
+  }
+  if (!span_inside(tri_offset, triangles, 12, room)) {
+    error = name + ": " + std::to_string(triangles) + " triangles at offset " + std::to_string(tri_offset) +
+            " lie outside the file";
+    return false;
+  }
+  if (vertices < 0 || !span_inside(xyz_offset, int64_t(frames) * vertices, kVertexSize, room)) {
+    error = name + ": " + std::to_string(frames) + " frames of " + std::to_string(vertices) + " vertices at offset " +
+            std::to_string(xyz_offset) + " lie outside the file";
+    return false;
+  }
+  if (end_offset < int32_t(kSurfaceHeaderSize) || uint64_t(end_offset) > room) {
+    error = name + " ends at offset " + std::to_string(end_offset) + " (relative), outside [108, " +
+            std::to_string(room) + "]";
+    return false;
+  }
+  const size_t base = out.vertex_count();
+  if (base + size_t(vertices) > 0xffffffffu) {
+    error = "more than 2^32 vertices";
+    return false;
+  }
+  const unsigned char* tp = sp + tri_offset;
+  for (int32_t t = 0; t < triangles; ++t) {
+    int32_t v[3] = {i32(tp + 12 * size_t(t)), i32(tp + 12 * size_t(t) + 4), i32(tp + 12 * size_t(t) + 8)};
+    for (int j = 0; j < 3; ++j) {
+      if (v[j] < 0 || v[j] >= vertices) {
+        error = name + " triangle " + std::to_string(t) + " uses vertex " + std::to_string(v[j]) + ", out of range (" +
+                std::to_string(vertices) + " vertices)";
+        return false;
+      }
+    }
+    out.indices.insert(out.indices.end(),
+                       {uint32_t(base + size_t(v[0])), uint32_t(base + size_t(v[2])), uint32_t(base + size_t(v[1]))});
+    out.sources.push_back({0, uint32_t(s), TriangleSource::kNone, TriangleSource::kNone});
+  }
+  const unsigned char* vp = sp + xyz_offset + size_t(in.options.md3_frame) * size_t(vertices) * kVertexSize;
+  out.positions.reserve(out.positions.size() + size_t(vertices) * 3);
+  for (int32_t v = 0; v < vertices; ++v) {
+    for (int k = 0; k < 3; ++k) out.positions.push_back(float(i16(vp + kVertexSize * size_t(v) + 2 * k)) * kXyzScale);
+  }
+  at += uint64_t(end_offset);
+  return true;
+}
+
+}  // namespace
+
+bool import_md3(const ImportInput& in, Scene& out, std::string& error) {
+  int32_t frames = 0, surfaces = 0, surface_offset = 0;
+  if (!read_header(in, frames, surfaces, surface_offset, error)) return false;
+  if (!check_claims(in, surfaces, surface_offset, out, error)) return false;
+  uint64_t at = uint64_t(surface_offset);
+  for (int32_t s = 0; s < surfaces; ++s)
+    if (!read_surface(in, s, frames, at, out, error)) return false;
   return true;
 }
 

@@ -207,6 +207,11 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
     error = at_line(unknown_line) + unknown_key + " is not an OBJ statement, and the file has no face: not a mesh";
     return false;
   }
+  if (out.indices.size() == base_indices) {  // no triangle: an error, as an empty OFF, PLY or STL is
+    error = "no face" + std::string(short_faces ? " with 3 corners or more" : "") +
+            (lines_points ? " (only line and point statements)" : "") + ": not a mesh";
+    return false;
+  }
   if (base + vertex_count > 0xffffffffu) {
     error = "more than 4294967295 vertices";
     return false;

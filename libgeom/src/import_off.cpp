@@ -75,17 +75,9 @@ bool token_uint(std::string_view tok, uint64_t& v) {
   return true;
 }
 
-}  // namespace
-
-bool import_off(const ImportInput& in, Scene& out, std::string& error) {
-  if (looks_like_utf16(in.data, in.size)) {
-    error = "UTF-16 or UTF-32 text is not supported (save the OFF as ASCII)";
-    return false;
-  }
-  const char* begin = reinterpret_cast<const char*>(in.data);
-  OffText t{skip_utf8_bom(begin, begin + in.size), begin + in.size};
-
-  // Keyword: [ST][C][N][4][n]OFF, or none.
+// Keyword: [ST][C][N][4][n]OFF, or none (the text then starts with the
+// counts, and is left where it was).
+bool read_keyword(OffText& t, bool& four, bool& ndim, std::string& error) {
   const char* save = t.p;
   uint64_t save_line = t.line;
   std::string_view kw = t.word();
@@ -93,7 +85,6 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error) {
     error = "empty file (no OFF header)";
     return false;
   }
-  bool four = false, ndim = false;
   if (kw.size() >= 3 && kw.substr(kw.size() - 3) == "OFF") {
     std::string_view prefix = kw.substr(0, kw.size() - 3);
     if (prefix.substr(0, 2) == "ST") prefix.remove_prefix(2);
@@ -112,36 +103,29 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error) {
       return false;
     }
     t.p = peek, t.line = peek_line;
-  } else {
-    uint64_t dummy;
-    if (!token_uint(kw, dummy)) {
-      error = "not an OFF file (starts with " + quote_token(kw) + ")";
-      return false;
-    }
-    t.p = save, t.line = save_line;  // no keyword: the counts come first
+    return true;
   }
-  uint64_t dim = 3;
-  if (ndim) {
-    std::string_view tok = t.word();
-    if (!token_uint(tok, dim) || dim < 3 || dim > 64) {
-      error = t.at() + "nOFF dimension must be 3 to 64, not " + quote_token(tok);
-      return false;
-    }
+  uint64_t dummy;
+  if (!token_uint(kw, dummy)) {
+    error = "not an OFF file (starts with " + quote_token(kw) + ")";
+    return false;
   }
-  if (four) ++dim;
+  t.p = save, t.line = save_line;  // no keyword: the counts come first
+  return true;
+}
 
-  uint64_t nv = 0, nf = 0, ne = 0;
+// The counts line (the edge count optional), checked against the bytes left
+// and the scene's vertex limit before anything is allocated.
+bool read_counts(OffText& t, const Scene& out, uint64_t& nv, uint64_t& nf, std::string& error) {
+  uint64_t ne = 0;
   std::string_view tv = t.word(), tf = t.word();
   if (!token_uint(tv, nv) || !token_uint(tf, nf)) {
     error = t.at() + "expected the vertex and face counts, found " + quote_token(tv) + " " + quote_token(tf);
     return false;
   }
-  // The edge count is optional on the counts line.
-  {
-    const char* peek = t.p;
-    std::string_view te = t.field();
-    if (!te.empty() && !token_uint(te, ne)) t.p = peek;
-  }
+  const char* peek = t.p;
+  std::string_view te = t.field();
+  if (!te.empty() && !token_uint(te, ne)) t.p = peek;
   const uint64_t left = uint64_t(t.end - t.p);
   if (nv > left / 6 + 1 || nf > left / 2 + 1 || nv * 6 + nf * 2 > left + 8) {
     error = "header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces, but only " +
@@ -152,8 +136,11 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error) {
     error = "more than 4294967295 vertices";
     return false;
   }
+  return true;
+}
 
-  const size_t base = out.vertex_count();
+// nv vertex lines of `dim` coordinates; the first 3 are used (4OFF: over the last).
+bool read_vertices(OffText& t, uint64_t nv, uint64_t dim, bool four, Scene& out, std::string& error) {
   out.positions.reserve(out.positions.size() + 3 * nv);
   for (uint64_t v = 0; v < nv; ++v) {
     t.skip_white_and_comments();
@@ -174,43 +161,77 @@ bool import_off(const ImportInput& in, Scene& out, std::string& error) {
     for (int k = 0; k < 3; ++k) out.positions.push_back(to_float(c[k] / w));
     t.skip_rest_of_line();
   }
+  return true;
+}
+
+// Face f's line: its vertex count k and indices into `poly` (offset by `base`).
+bool read_face(OffText& t, uint64_t f, uint64_t nf, uint64_t nv, size_t base, uint64_t& k, std::vector<uint32_t>& poly,
+               std::string& error) {
+  t.skip_white_and_comments();
+  std::string_view tok = t.field();
+  if (tok.empty()) {
+    error = "file ends before face " + std::to_string(f) + " of " + std::to_string(nf);
+    return false;
+  }
+  if (!token_uint(tok, k)) {
+    error = t.at() + "face " + std::to_string(f) + ": bad vertex count " + quote_token(tok);
+    return false;
+  }
+  if (k > uint64_t(t.end - t.p)) {
+    error = t.at() + "face " + std::to_string(f) + " claims " + std::to_string(k) + " vertices";
+    return false;
+  }
+  poly.clear();
+  for (uint64_t i = 0; i < k; ++i) {
+    uint64_t idx;
+    std::string_view it = t.field();
+    if (it.empty() || !token_uint(it, idx)) {
+      error = t.at() + "face " + std::to_string(f) + ": " +
+              (it.empty() ? std::string("expected ") + std::to_string(k) + " vertex indices"
+                          : "bad vertex index " + quote_token(it));
+      return false;
+    }
+    if (idx >= nv) {
+      error = t.at() + "face " + std::to_string(f) + ": vertex index " + std::to_string(idx) + " out of range (" +
+              std::to_string(nv) + " vertices)";
+      return false;
+    }
+    poly.push_back(uint32_t(base + idx));
+  }
+  t.skip_rest_of_line();
+  return true;
+}
+
+}  // namespace
+
+bool import_off(const ImportInput& in, Scene& out, std::string& error) {
+  if (looks_like_utf16(in.data, in.size)) {
+    error = "UTF-16 or UTF-32 text is not supported (save the OFF as ASCII)";
+    return false;
+  }
+  const char* begin = reinterpret_cast<const char*>(in.data);
+  OffText t{skip_utf8_bom(begin, begin + in.size), begin + in.size};
+  bool four = false, ndim = false;
+  if (!read_keyword(t, four, ndim, error)) return false;
+  uint64_t dim = 3;
+  if (ndim) {
+    std::string_view tok = t.word();
+    if (!token_uint(tok, dim) || dim < 3 || dim > 64) {
+      error = t.at() + "nOFF dimension must be 3 to 64, not " + quote_token(tok);
+      return false;
+    }
+  }
+  if (four) ++dim;
+  uint64_t nv = 0, nf = 0;
+  if (!read_counts(t, out, nv, nf, error)) return false;
+  const size_t base = out.vertex_count();
+  if (!read_vertices(t, nv, dim, four, out, error)) return false;
 
   uint64_t short_faces = 0;
   std::vector<uint32_t> poly;
   for (uint64_t f = 0; f < nf; ++f) {
-    t.skip_white_and_comments();
     uint64_t k = 0;
-    std::string_view tok = t.field();
-    if (tok.empty()) {
-      error = "file ends before face " + std::to_string(f) + " of " + std::to_string(nf);
-      return false;
-    }
-    if (!token_uint(tok, k)) {
-      error = t.at() + "face " + std::to_string(f) + ": bad vertex count " + quote_token(tok);
-      return false;
-    }
-    if (k > uint64_t(t.end - t.p)) {
-      error = t.at() + "face " + std::to_string(f) + " claims " + std::to_string(k) + " vertices";
-      return false;
-    }
-    poly.clear();
-    for (uint64_t i = 0; i < k; ++i) {
-      uint64_t idx;
-      std::string_view it = t.field();
-      if (it.empty() || !token_uint(it, idx)) {
-        error = t.at() + "face " + std::to_string(f) + ": " +
-                (it.empty() ? std::string("expected ") + std::to_string(k) + " vertex indices"
-                            : "bad vertex index " + quote_token(it));
-        return false;
-      }
-      if (idx >= nv) {
-        error = t.at() + "face " + std::to_string(f) + ": vertex index " + std::to_string(idx) + " out of range (" +
-                std::to_string(nv) + " vertices)";
-        return false;
-      }
-      poly.push_back(uint32_t(base + idx));
-    }
-    t.skip_rest_of_line();
+    if (!read_face(t, f, nf, nv, base, k, poly, error)) return false;
     if (k < 3) {
       ++short_faces;
       continue;

@@ -300,29 +300,104 @@ bool fast_faces(const Element& el, Body& body, size_t base, uint64_t vertex_coun
   body.p = p;
   return true;
 }
-}  // namespace
 
-bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
-  const char* text = reinterpret_cast<const char*>(in.data);
-  HeaderLines h{text, text + in.size, 0, std::string_view()};
+// ---------------------------------------------------------------------------
+// The header.
+
+struct Header {
+  Format format = Format::Ascii;
+  std::vector<Element> elements;
+  const char* body_start = nullptr;  // the first byte after end_header's line
+};
+
+// The first line must be `ply`; otherwise says what the file looks like.
+bool read_magic(const ImportInput& in, HeaderLines& h, std::string& error) {
   std::string_view line, first;
   if (h.next(line)) {
     const char* c = line.data();
     first = next_token(c, c + line.size());
   }
-  if (first != "ply") {
-    if (looks_like_utf16(in.data, in.size))
-      error = "UTF-16 or UTF-32 text is not supported (save the PLY as ASCII)";
-    else
-      error = in.size == 0 ? "empty file" : "not a PLY file (starts with " + quote_token(first) + ", not 'ply')";
+  if (first == "ply") return true;
+  if (looks_like_utf16(in.data, in.size))
+    error = "UTF-16 or UTF-32 text is not supported (save the PLY as ASCII)";
+  else
+    error = in.size == 0 ? "empty file" : "not a PLY file (starts with " + quote_token(first) + ", not 'ply')";
+  return false;
+}
+
+// The rest of a `format F 1.0` line.
+bool read_format_line(const char*& c, const char* e, const std::string& at, Format& format, std::string& error) {
+  std::string_view f = next_token(c, e);
+  if (f == "ascii")
+    format = Format::Ascii;
+  else if (f == "binary_little_endian")
+    format = Format::LittleEndian;
+  else if (f == "binary_big_endian")
+    format = Format::BigEndian;
+  else {
+    error = at + "unknown format " + quote_token(f);
     return false;
   }
+  return true;
+}
 
-  // Header.
-  Format format = Format::Ascii;
+// The rest of an `element NAME COUNT` line.
+bool read_element_line(const char*& c, const char* e, const std::string& at, uint64_t line,
+                       std::vector<Element>& elements, std::string& error) {
+  Element el;
+  el.name = std::string(next_token(c, e));
+  std::string_view n = next_token(c, e);
+  const char* q = n.data();
+  int64_t count = -1;
+  if (el.name.empty() || n.empty() || !scan_int(q, n.data() + n.size(), count) || count < 0) {
+    error = at + "element needs a name and a count";
+    return false;
+  }
+  el.count = uint64_t(count);
+  el.header_line = line;
+  elements.push_back(std::move(el));
+  return true;
+}
+
+// The rest of a `property TYPE NAME` or `property list COUNT_TYPE ITEM_TYPE NAME` line.
+bool read_property_line(const char*& c, const char* e, const std::string& at, std::vector<Element>& elements,
+                        std::string& error) {
+  if (elements.empty()) {
+    error = at + "property before any element";
+    return false;
+  }
+  Property prop;
+  std::string_view t = next_token(c, e);
+  if (t == "list") {
+    prop.list = true;
+    std::string_view ct = next_token(c, e);
+    if (!parse_type(ct, prop.count_type) || prop.count_type == PlyType::F32 || prop.count_type == PlyType::F64) {
+      error = at + "bad list count type " + quote_token(ct);
+      return false;
+    }
+    t = next_token(c, e);
+  }
+  if (!parse_type(t, prop.type)) {
+    error = at + "unknown property type " + quote_token(t);
+    return false;
+  }
+  prop.name = std::string(next_token(c, e));
+  if (prop.name.empty()) {
+    error = at + "property without a name";
+    return false;
+  }
+  elements.back().props.push_back(std::move(prop));
+  return true;
+}
+
+// From the `ply` line to end_header: the format, the elements and where the body starts.
+bool read_header(const ImportInput& in, Header& hdr, Scene& out, std::string& error) {
+  const char* text = reinterpret_cast<const char*>(in.data);
+  HeaderLines h{text, text + in.size, 0, std::string_view()};
+  if (!read_magic(in, h, error)) return false;
   bool have_format = false, have_end = false;
-  std::vector<Element> elements;
   uint64_t unknown_lines = 0;
+  std::string_view line;
   while (!have_end && h.next(line)) {
     const char* c = line.data();
     const char* e = c + line.size();
@@ -330,57 +405,12 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
     const std::string at = "header line " + std::to_string(h.line) + ": ";
     if (kw.empty() || kw == "comment" || kw == "obj_info") continue;
     if (kw == "format") {
-      std::string_view f = next_token(c, e);
-      if (f == "ascii")
-        format = Format::Ascii;
-      else if (f == "binary_little_endian")
-        format = Format::LittleEndian;
-      else if (f == "binary_big_endian")
-        format = Format::BigEndian;
-      else {
-        error = at + "unknown format " + quote_token(f);
-        return false;
-      }
+      if (!read_format_line(c, e, at, hdr.format, error)) return false;
       have_format = true;
     } else if (kw == "element") {
-      Element el;
-      el.name = std::string(next_token(c, e));
-      std::string_view n = next_token(c, e);
-      const char* q = n.data();
-      int64_t count = -1;
-      if (el.name.empty() || n.empty() || !scan_int(q, n.data() + n.size(), count) || count < 0) {
-        error = at + "element needs a name and a count";
-        return false;
-      }
-      el.count = uint64_t(count);
-      el.header_line = h.line;
-      elements.push_back(std::move(el));
+      if (!read_element_line(c, e, at, h.line, hdr.elements, error)) return false;
     } else if (kw == "property") {
-      if (elements.empty()) {
-        error = at + "property before any element";
-        return false;
-      }
-      Property prop;
-      std::string_view t = next_token(c, e);
-      if (t == "list") {
-        prop.list = true;
-        std::string_view ct = next_token(c, e);
-        if (!parse_type(ct, prop.count_type) || prop.count_type == PlyType::F32 || prop.count_type == PlyType::F64) {
-          error = at + "bad list count type " + quote_token(ct);
-          return false;
-        }
-        t = next_token(c, e);
-      }
-      if (!parse_type(t, prop.type)) {
-        error = at + "unknown property type " + quote_token(t);
-        return false;
-      }
-      prop.name = std::string(next_token(c, e));
-      if (prop.name.empty()) {
-        error = at + "property without a name";
-        return false;
-      }
-      elements.back().props.push_back(std::move(prop));
+      if (!read_property_line(c, e, at, hdr.elements, error)) return false;
     } else if (kw == "end_header") {
       have_end = true;
     } else {
@@ -399,171 +429,242 @@ bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
     out.warnings.push_back(in.name + ": " + std::to_string(unknown_lines) + " unknown PLY header lines ignored");
   // In binary files the body starts right after end_header's line end; with
   // CR-only headers a following '\n' byte is data, not part of the line end.
-  const char* body_start = h.p;
-  if (format != Format::Ascii && h.eol == "\r" && body_start > text && body_start[-1] == '\n' &&
-      body_start - 2 >= text && body_start[-2] == '\r')
-    --body_start;
+  hdr.body_start = h.p;
+  if (hdr.format != Format::Ascii && h.eol == "\r" && hdr.body_start > text && hdr.body_start[-1] == '\n' &&
+      hdr.body_start - 2 >= text && hdr.body_start[-2] == '\r')
+    --hdr.body_start;
+  return true;
+}
 
-  Body body{reinterpret_cast<const unsigned char*>(body_start), in.data + in.size, format};
-  const size_t base = out.vertex_count();
-  uint64_t vertex_count = 0;
-  for (const Element& el : elements)
-    if (el.name == "vertex") {
-      vertex_count = el.count;
-      break;
-    }
-  if (base + vertex_count > 0xffffffffu) {
-    error = "more than 4294967295 vertices";
-    return false;
-  }
+// ---------------------------------------------------------------------------
+// The body.
 
+// What a property of the element being read is used for.
+enum Role : uint8_t { Skip, X, Y, Z, Indices };
+
+// The state of the body's read, across its elements.
+struct BodyReader {
+  BodyReader(const ImportInput& in_, Scene& out_, Body body_) : in(in_), out(out_), body(body_) {}
+  const ImportInput& in;
+  Scene& out;
+  Body body;
+  size_t base = 0;            // the scene's vertex count before this file
+  uint64_t vertex_count = 0;  // the vertex element's count, what indices are checked against
   bool done_vertex = false, done_face = false, done_strips = false;
   uint64_t short_faces = 0;
   std::vector<uint32_t> poly;
-  for (const Element& el : elements) {
-    if (el.count == 0) continue;
-    if (el.props.empty()) continue;  // nothing to read, however many entries
-    uint64_t min_bytes = 0;
-    for (const Property& p : el.props)
-      min_bytes += format == Format::Ascii ? 2 : type_size(p.list ? p.count_type : p.type);
-    if (el.count > (body.left() + 1) / min_bytes) {
-      error = "element '" + el.name + "' (header line " + std::to_string(el.header_line) + ") claims " +
-              std::to_string(el.count) + " entries of at least " + std::to_string(min_bytes) + " bytes but only " +
-              std::to_string(body.left()) + " bytes are left";
-      return false;
-    }
-    // Role of each property in this element.
-    enum Role : uint8_t { Skip, X, Y, Z, Indices };
-    const bool is_vertex = el.name == "vertex" && !done_vertex;
-    const bool is_face = el.name == "face" && !done_face;
-    const bool is_strips = el.name == "tristrips" && !done_strips;
-    std::vector<Role> roles(el.props.size(), Skip);
-    int found = 0;
-    for (size_t i = 0; i < el.props.size(); ++i) {
-      const Property& p = el.props[i];
-      if (is_vertex && !p.list && (p.name == "x" || p.name == "y" || p.name == "z")) {
-        roles[i] = p.name == "x" ? X : p.name == "y" ? Y : Z;
-        found |= 1 << (roles[i] - X);
-      }
-      if ((is_face || is_strips) && p.list && (p.name == "vertex_indices" || p.name == "vertex_index") &&
-          !(found & 8)) {
-        roles[i] = Indices;
-        found |= 8;
-      }
-    }
-    if (is_vertex) {
-      if (found != 7) {
-        error = "vertex element has no x, y and z properties";
-        return false;
-      }
-      out.positions.reserve(out.positions.size() + 3 * el.count);
-      done_vertex = true;
-    }
-    if ((is_face || is_strips) && !(found & 8)) {
-      out.warnings.push_back(in.name + ": element '" + el.name + "' has no list property vertex_indices; skipped");
-    }
-    if (is_face && (found & 8)) {
-      out.indices.reserve(out.indices.size() + 3 * std::min<uint64_t>(el.count, body.left() / 4));
-      done_face = true;
-    }
-    if (is_strips && (found & 8)) done_strips = true;
+};
 
-    if (format != Format::Ascii && (is_vertex || (is_face && (found & 8)))) {
-      const size_t np = out.positions.size(), ni = out.indices.size(), ns = out.sources.size();
-      const unsigned char* start = body.p;
-      uint64_t shorts = 0;
-      std::vector<uint8_t> role_of(roles.size(), 0);
-      for (size_t i = 0; i < roles.size(); ++i) role_of[i] = roles[i] >= X && roles[i] <= Z ? uint8_t(roles[i]) : 0;
-      if (is_vertex ? fast_vertices(el, role_of, body, out.positions)
-                    : fast_faces(el, body, base, vertex_count, out, shorts)) {
-        short_faces += shorts;
-        continue;
-      }
-      out.positions.resize(np), out.indices.resize(ni), out.sources.resize(ns);  // the general reader says why
-      body.p = start;
+// Refuses an element whose count cannot fit in the bytes left, before any allocation.
+bool element_fits(const Element& el, const Body& body, std::string& error) {
+  uint64_t min_bytes = 0;
+  for (const Property& p : el.props)
+    min_bytes += body.format == Format::Ascii ? 2 : type_size(p.list ? p.count_type : p.type);
+  if (el.count > (body.left() + 1) / min_bytes) {
+    error = "element '" + el.name + "' (header line " + std::to_string(el.header_line) + ") claims " +
+            std::to_string(el.count) + " entries of at least " + std::to_string(min_bytes) + " bytes but only " +
+            std::to_string(body.left()) + " bytes are left";
+    return false;
+  }
+  return true;
+}
+
+// Each property's role; returns the roles found (bits 0-2: x, y, z; bit 3: the index list).
+int assign_roles(const Element& el, bool is_vertex, bool is_list_element, std::vector<Role>& roles) {
+  roles.assign(el.props.size(), Skip);
+  int found = 0;
+  for (size_t i = 0; i < el.props.size(); ++i) {
+    const Property& p = el.props[i];
+    if (is_vertex && !p.list && (p.name == "x" || p.name == "y" || p.name == "z")) {
+      roles[i] = p.name == "x" ? X : p.name == "y" ? Y : Z;
+      found |= 1 << (roles[i] - X);
     }
-    const char* what = is_vertex ? "vertex " : is_face ? "face " : is_strips ? "strip " : nullptr;
-    for (uint64_t k = 0; k < el.count; ++k) {
-      auto where = [&]() {
-        return (what ? std::string(what) : "element '" + el.name + "' entry ") + std::to_string(k) + ": ";
-      };
-      float xyz[3] = {0, 0, 0};
-      for (size_t i = 0; i < el.props.size(); ++i) {
-        const Property& p = el.props[i];
-        double v;
-        if (!p.list) {
-          if (!body.read(p.type, v)) {
-            error = where() + number_or_end(body) + " for property '" + p.name + "'";
-            return false;
-          }
-          if (roles[i] >= X && roles[i] <= Z) xyz[roles[i] - X] = to_float(v);
-          continue;
-        }
-        double nd;
-        if (!body.read(p.count_type, nd) || nd < 0) {
-          error = where() + number_or_end(body) + " for the length of list '" + p.name + "'";
-          return false;
-        }
-        const uint64_t n = uint64_t(nd);
-        const uint64_t item_bytes = format == Format::Ascii ? 1 : type_size(p.type);
-        if (n > (body.left() + 1) / item_bytes) {
-          error = where() + "list '" + p.name + "' claims " + std::to_string(n) + " items but only " +
-                  std::to_string(body.left()) + " bytes are left";
-          return false;
-        }
-        if (roles[i] != Indices) {
-          for (uint64_t j = 0; j < n; ++j)
-            if (!body.read(p.type, v)) {
-              error = where() + number_or_end(body) + " in list '" + p.name + "'";
-              return false;
-            }
-          continue;
-        }
-        poly.clear();
-        for (uint64_t j = 0; j < n; ++j) {
-          if (!body.read(p.type, v)) {
-            error = where() + number_or_end(body) + " in list '" + p.name + "'";
-            return false;
-          }
-          if (is_strips && v == -1) {
-            poly.push_back(0xffffffffu);  // restart
-            continue;
-          }
-          if (!(v >= 0 && v < double(vertex_count) && v == std::floor(v))) {
-            error =
-                where() + "vertex index " + show(v) + " out of range (" + std::to_string(vertex_count) + " vertices)";
-            return false;
-          }
-          poly.push_back(uint32_t(base + uint64_t(v)));
-        }
-        if (is_face) {
-          if (poly.size() < 3) ++short_faces;
-          for (size_t j = 1; j + 1 < poly.size(); ++j) {
-            out.indices.insert(out.indices.end(), {poly[0], poly[j], poly[j + 1]});
-            out.sources.push_back(TriangleSource{});
-          }
-        } else {  // strips: a window of 3, alternating winding, restarted at -1
-          size_t start = 0;
-          for (size_t j = 0; j < poly.size(); ++j) {
-            if (poly[j] == 0xffffffffu) {
-              start = j + 1;
-              continue;
-            }
-            if (j < start + 2) continue;
-            uint32_t a = poly[j - 2], b = poly[j - 1], c = poly[j];
-            if ((j - start) % 2 == 1) std::swap(a, b);
-            if (a == b || b == c || a == c) continue;
-            out.indices.insert(out.indices.end(), {a, b, c});
-            out.sources.push_back(TriangleSource{});
-          }
-        }
-      }
-      if (is_vertex) out.positions.insert(out.positions.end(), xyz, xyz + 3);
+    if (is_list_element && p.list && (p.name == "vertex_indices" || p.name == "vertex_index") && !(found & 8)) {
+      roles[i] = Indices;
+      found |= 8;
     }
   }
-  if (!done_face && !done_strips) out.warnings.push_back(in.name + ": no face element: no triangles (a point cloud?)");
-  if (short_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) + " faces with fewer than 3 vertices skipped");
+  return found;
+}
+
+// The binary fast path of a vertex or face element; false (nothing kept, the
+// body where it was) where the general reader must read it.
+bool read_fast(BodyReader& r, const Element& el, const std::vector<Role>& roles, bool is_vertex) {
+  Scene& out = r.out;
+  const size_t np = out.positions.size(), ni = out.indices.size(), ns = out.sources.size();
+  const unsigned char* start = r.body.p;
+  uint64_t shorts = 0;
+  std::vector<uint8_t> role_of(roles.size(), 0);
+  for (size_t i = 0; i < roles.size(); ++i) role_of[i] = roles[i] >= X && roles[i] <= Z ? uint8_t(roles[i]) : 0;
+  if (is_vertex ? fast_vertices(el, role_of, r.body, out.positions)
+                : fast_faces(el, r.body, r.base, r.vertex_count, out, shorts)) {
+    r.short_faces += shorts;
+    return true;
+  }
+  out.positions.resize(np), out.indices.resize(ni), out.sources.resize(ns);  // the general reader says why
+  r.body.p = start;
+  return false;
+}
+
+// A polygon fanned from its first corner; fewer than 3 corners counted.
+void emit_polygon(const std::vector<uint32_t>& poly, Scene& out, uint64_t& short_faces) {
+  if (poly.size() < 3) ++short_faces;
+  for (size_t j = 1; j + 1 < poly.size(); ++j) {
+    out.indices.insert(out.indices.end(), {poly[0], poly[j], poly[j + 1]});
+    out.sources.push_back(TriangleSource{});
+  }
+}
+
+// A triangle strip: a window of 3, alternating winding, restarted at -1
+// (0xffffffff); the degenerate triangles that stitch strips are dropped.
+void emit_strip(const std::vector<uint32_t>& poly, Scene& out) {
+  size_t start = 0;
+  for (size_t j = 0; j < poly.size(); ++j) {
+    if (poly[j] == 0xffffffffu) {
+      start = j + 1;
+      continue;
+    }
+    if (j < start + 2) continue;
+    uint32_t a = poly[j - 2], b = poly[j - 1], c = poly[j];
+    if ((j - start) % 2 == 1) std::swap(a, b);
+    if (a == b || b == c || a == c) continue;
+    out.indices.insert(out.indices.end(), {a, b, c});
+    out.sources.push_back(TriangleSource{});
+  }
+}
+
+// "vertex 12: ", "face 3: ", or "element 'NAME' entry 5: ".
+std::string entry_where(const char* what, const Element& el, uint64_t k) {
+  return (what ? std::string(what) : "element '" + el.name + "' entry ") + std::to_string(k) + ": ";
+}
+
+// One list property of entry k: its items read past, or, for the index list,
+// checked and emitted as a polygon or a strip.
+bool read_list(BodyReader& r, const Element& el, const char* what, uint64_t k, const Property& p, Role role,
+               bool is_face, bool is_strips, std::string& error) {
+  Body& body = r.body;
+  double v, nd;
+  if (!body.read(p.count_type, nd) || nd < 0) {
+    error = entry_where(what, el, k) + number_or_end(body) + " for the length of list '" + p.name + "'";
+    return false;
+  }
+  const uint64_t n = uint64_t(nd);
+  const uint64_t item_bytes = body.format == Format::Ascii ? 1 : type_size(p.type);
+  if (n > (body.left() + 1) / item_bytes) {
+    error = entry_where(what, el, k) + "list '" + p.name + "' claims " + std::to_string(n) + " items but only " +
+            std::to_string(body.left()) + " bytes are left";
+    return false;
+  }
+  if (role != Indices) {
+    for (uint64_t j = 0; j < n; ++j)
+      if (!body.read(p.type, v)) {
+        error = entry_where(what, el, k) + number_or_end(body) + " in list '" + p.name + "'";
+        return false;
+      }
+    return true;
+  }
+  r.poly.clear();
+  for (uint64_t j = 0; j < n; ++j) {
+    if (!body.read(p.type, v)) {
+      error = entry_where(what, el, k) + number_or_end(body) + " in list '" + p.name + "'";
+      return false;
+    }
+    if (is_strips && v == -1) {
+      r.poly.push_back(0xffffffffu);  // restart
+      continue;
+    }
+    if (!(v >= 0 && v < double(r.vertex_count) && v == std::floor(v))) {
+      error = entry_where(what, el, k) + "vertex index " + show(v) + " out of range (" +
+              std::to_string(r.vertex_count) + " vertices)";
+      return false;
+    }
+    r.poly.push_back(uint32_t(r.base + uint64_t(v)));
+  }
+  if (is_face)
+    emit_polygon(r.poly, r.out, r.short_faces);
+  else
+    emit_strip(r.poly, r.out);
+  return true;
+}
+
+// The general reader: every entry of the element, value by value, in any format.
+bool read_entries(BodyReader& r, const Element& el, const std::vector<Role>& roles, bool is_vertex, bool is_face,
+                  bool is_strips, std::string& error) {
+  const char* what = is_vertex ? "vertex " : is_face ? "face " : is_strips ? "strip " : nullptr;
+  for (uint64_t k = 0; k < el.count; ++k) {
+    float xyz[3] = {0, 0, 0};
+    for (size_t i = 0; i < el.props.size(); ++i) {
+      const Property& p = el.props[i];
+      if (p.list) {
+        if (!read_list(r, el, what, k, p, roles[i], is_face, is_strips, error)) return false;
+        continue;
+      }
+      double v;
+      if (!r.body.read(p.type, v)) {
+        error = entry_where(what, el, k) + number_or_end(r.body) + " for property '" + p.name + "'";
+        return false;
+      }
+      if (roles[i] >= X && roles[i] <= Z) xyz[roles[i] - X] = to_float(v);
+    }
+    if (is_vertex) r.out.positions.insert(r.out.positions.end(), xyz, xyz + 3);
+  }
+  return true;
+}
+
+// One element: the first `vertex`, `face` and `tristrips` are read into the
+// scene, any other is read past.
+bool read_element(BodyReader& r, const Element& el, std::string& error) {
+  if (el.count == 0) return true;
+  if (el.props.empty()) return true;  // nothing to read, however many entries
+  if (!element_fits(el, r.body, error)) return false;
+  const bool is_vertex = el.name == "vertex" && !r.done_vertex;
+  const bool is_face = el.name == "face" && !r.done_face;
+  const bool is_strips = el.name == "tristrips" && !r.done_strips;
+  std::vector<Role> roles;
+  const int found = assign_roles(el, is_vertex, is_face || is_strips, roles);
+  if (is_vertex) {
+    if (found != 7) {
+      error = "vertex element has no x, y and z properties";
+      return false;
+    }
+    r.out.positions.reserve(r.out.positions.size() + 3 * el.count);
+    r.done_vertex = true;
+  }
+  if ((is_face || is_strips) && !(found & 8)) {
+    r.out.warnings.push_back(r.in.name + ": element '" + el.name + "' has no list property vertex_indices; skipped");
+  }
+  if (is_face && (found & 8)) {
+    r.out.indices.reserve(r.out.indices.size() + 3 * std::min<uint64_t>(el.count, r.body.left() / 4));
+    r.done_face = true;
+  }
+  if (is_strips && (found & 8)) r.done_strips = true;
+  if (r.body.format != Format::Ascii && (is_vertex || (is_face && (found & 8))) && read_fast(r, el, roles, is_vertex))
+    return true;
+  return read_entries(r, el, roles, is_vertex, is_face, is_strips, error);
+}
+}  // namespace
+
+bool import_ply(const ImportInput& in, Scene& out, std::string& error) {
+  Header hdr;
+  if (!read_header(in, hdr, out, error)) return false;
+  BodyReader r(in, out, Body{reinterpret_cast<const unsigned char*>(hdr.body_start), in.data + in.size, hdr.format});
+  r.base = out.vertex_count();
+  for (const Element& el : hdr.elements)
+    if (el.name == "vertex") {
+      r.vertex_count = el.count;
+      break;
+    }
+  if (r.base + r.vertex_count > 0xffffffffu) {
+    error = "more than 4294967295 vertices";
+    return false;
+  }
+  for (const Element& el : hdr.elements)
+    if (!read_element(r, el, error)) return false;
+  if (!r.done_face && !r.done_strips)
+    out.warnings.push_back(in.name + ": no face element: no triangles (a point cloud?)");
+  if (r.short_faces)
+    out.warnings.push_back(in.name + ": " + std::to_string(r.short_faces) +
+                           " faces with fewer than 3 vertices skipped");
   return true;
 }
 

@@ -64,96 +64,123 @@ bool import_binary(const ImportInput& in, uint64_t n, Scene& out, std::string& e
   return true;
 }
 
+// "line N: " for a position in the text.
+std::string line_of(const ImportInput& in, const char* at) {
+  uint64_t line = 1;
+  for (const char* q = reinterpret_cast<const char*>(in.data); q < at; ++q)
+    line += *q == '\n' || (*q == '\r' && !(q + 1 < at && q[1] == '\n'));
+  return "line " + std::to_string(line) + ": ";
+}
+
+// The facet being read: its first three corners, the latest one after them.
+struct AsciiFacet {
+  float corner[3 * 3];
+  float extra[3];
+  size_t corners = 0;  // vertices seen in the current facet
+  bool open = false;
+  uint64_t bad = 0;  // facets with fewer than 3 vertices
+};
+
+// A `vertex x y z` line of the open facet; from the fourth corner on, the
+// facet is fanned from its first corner as it comes.
+bool read_vertex(const ImportInput& in, const char*& p, const char* end, AsciiFacet& f, Scene& out,
+                 std::string& error) {
+  float* xyz = f.corners < 3 ? f.corner + 3 * f.corners : f.extra;
+  for (int k = 0; k < 3; ++k) {
+    std::string_view tok = next_token(p, end);
+    const char* q = tok.data();
+    if (tok.empty() || !scan_float(q, tok.data() + tok.size(), xyz[k])) {
+      error = line_of(in, tok.data()) + "bad vertex coordinate " + quote_token(tok);
+      return false;
+    }
+  }
+  if (f.corners >= 3) {  // a polygon facet: fan from its first corner
+    if (f.corners == 3) {
+      const size_t a = out.vertex_count();
+      out.positions.insert(out.positions.end(), f.corner, f.corner + 9);
+      out.indices.insert(out.indices.end(), {uint32_t(a), uint32_t(a + 1), uint32_t(a + 2)});
+      out.sources.push_back(TriangleSource{});
+    }
+    const size_t v = out.vertex_count();
+    out.positions.insert(out.positions.end(), xyz, xyz + 3);
+    out.indices.insert(out.indices.end(), {uint32_t(v - f.corners), uint32_t(v - 1), uint32_t(v)});
+    out.sources.push_back(TriangleSource{});
+  }
+  ++f.corners;
+  return true;
+}
+
+// `endfacet`: a triangle facet is emitted here, one with fewer corners counted.
+void close_facet(AsciiFacet& f, Scene& out) {
+  f.open = false;
+  if (f.corners == 3) {
+    const size_t v = out.vertex_count();
+    out.positions.insert(out.positions.end(), f.corner, f.corner + 9);
+    out.indices.insert(out.indices.end(), {uint32_t(v), uint32_t(v + 1), uint32_t(v + 2)});
+    out.sources.push_back(TriangleSource{});
+  } else if (f.corners < 3) {
+    ++f.bad;
+  }
+}
+
+// One keyword of the ASCII grammar and what follows it on its line.
+bool read_keyword(const ImportInput& in, std::string_view w, const char*& p, const char* end, AsciiFacet& f, Scene& out,
+                  std::string& error) {
+  if (token_is(w, "solid") || token_is(w, "endsolid")) {
+    if (f.open) {
+      error = line_of(in, w.data()) + "'" + std::string(w) + "' inside a facet";
+      return false;
+    }
+    while (p < end && !is_eol(*p)) ++p;  // the name runs to the end of the line
+  } else if (token_is(w, "facet")) {
+    if (f.open) {
+      error = line_of(in, w.data()) + "facet without endfacet";
+      return false;
+    }
+    f.open = true;
+    f.corners = 0;
+    while (p < end && !is_eol(*p)) ++p;  // "normal nx ny nz" is ignored
+  } else if (token_is(w, "vertex")) {
+    if (!f.open) {
+      error = line_of(in, w.data()) + "vertex outside a facet";
+      return false;
+    }
+    return read_vertex(in, p, end, f, out, error);
+  } else if (token_is(w, "endfacet")) {
+    if (!f.open) {
+      error = line_of(in, w.data()) + "endfacet without facet";
+      return false;
+    }
+    close_facet(f, out);
+  } else if (token_is(w, "outer") || token_is(w, "loop") || token_is(w, "endloop")) {
+    // structure only
+  } else {
+    error = line_of(in, w.data()) + "unexpected " + quote_token(w) + " in ASCII STL";
+    return false;
+  }
+  return true;
+}
+
 bool import_ascii(const ImportInput& in, Scene& out, std::string& error) {
   const char* p = reinterpret_cast<const char*>(in.data);
   const char* end = p + in.size;
-  auto line_of = [&](const char* at) {
-    uint64_t line = 1;
-    for (const char* q = reinterpret_cast<const char*>(in.data); q < at; ++q)
-      line += *q == '\n' || (*q == '\r' && !(q + 1 < at && q[1] == '\n'));
-    return "line " + std::to_string(line) + ": ";
-  };
   const size_t base = out.vertex_count();
-  float facet[3 * 3];
-  float extra[3];
-  size_t corners = 0;  // vertices seen in the current facet
-  bool in_facet = false;
-  uint64_t bad_facets = 0;
+  AsciiFacet f;
   for (;;) {
     std::string_view w = next_word(p, end);
     if (w.empty()) break;
-    if (token_is(w, "solid") || token_is(w, "endsolid")) {
-      if (in_facet) {
-        error = line_of(w.data()) + "'" + std::string(w) + "' inside a facet";
-        return false;
-      }
-      while (p < end && !is_eol(*p)) ++p;  // the name runs to the end of the line
-    } else if (token_is(w, "facet")) {
-      if (in_facet) {
-        error = line_of(w.data()) + "facet without endfacet";
-        return false;
-      }
-      in_facet = true;
-      corners = 0;
-      while (p < end && !is_eol(*p)) ++p;  // "normal nx ny nz" is ignored
-    } else if (token_is(w, "vertex")) {
-      if (!in_facet) {
-        error = line_of(w.data()) + "vertex outside a facet";
-        return false;
-      }
-      float* xyz = corners < 3 ? facet + 3 * corners : extra;
-      for (int k = 0; k < 3; ++k) {
-        std::string_view tok = next_token(p, end);
-        const char* q = tok.data();
-        if (tok.empty() || !scan_float(q, tok.data() + tok.size(), xyz[k])) {
-          error = line_of(tok.data()) + "bad vertex coordinate " + quote_token(tok);
-          return false;
-        }
-      }
-      if (corners >= 3) {  // a polygon facet: fan from its first corner
-        if (corners == 3) {
-          const size_t a = out.vertex_count();
-          out.positions.insert(out.positions.end(), facet, facet + 9);
-          out.indices.insert(out.indices.end(), {uint32_t(a), uint32_t(a + 1), uint32_t(a + 2)});
-          out.sources.push_back(TriangleSource{});
-        }
-        const size_t v = out.vertex_count();
-        out.positions.insert(out.positions.end(), xyz, xyz + 3);
-        out.indices.insert(out.indices.end(), {uint32_t(v - corners), uint32_t(v - 1), uint32_t(v)});
-        out.sources.push_back(TriangleSource{});
-      }
-      ++corners;
-    } else if (token_is(w, "endfacet")) {
-      if (!in_facet) {
-        error = line_of(w.data()) + "endfacet without facet";
-        return false;
-      }
-      in_facet = false;
-      if (corners == 3) {
-        const size_t v = out.vertex_count();
-        out.positions.insert(out.positions.end(), facet, facet + 9);
-        out.indices.insert(out.indices.end(), {uint32_t(v), uint32_t(v + 1), uint32_t(v + 2)});
-        out.sources.push_back(TriangleSource{});
-      } else if (corners < 3) {
-        ++bad_facets;
-      }
-    } else if (token_is(w, "outer") || token_is(w, "loop") || token_is(w, "endloop")) {
-      // structure only
-    } else {
-      error = line_of(w.data()) + "unexpected " + quote_token(w) + " in ASCII STL";
-      return false;
-    }
+    if (!read_keyword(in, w, p, end, f, out, error)) return false;
     if (out.vertex_count() - base > 0xffffffffu - 3) {
       error = "more than 4294967295 vertices";
       return false;
     }
   }
-  if (in_facet) {
+  if (f.open) {
     error = "file ends inside a facet";
     return false;
   }
-  if (bad_facets)
-    out.warnings.push_back(in.name + ": " + std::to_string(bad_facets) + " facets with fewer than 3 vertices skipped");
+  if (f.bad)
+    out.warnings.push_back(in.name + ": " + std::to_string(f.bad) + " facets with fewer than 3 vertices skipped");
   return true;
 }
 

@@ -11,7 +11,7 @@
 
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
-#include "geom/report.h"
+#include "geom/process.h"
 
 namespace geom {
 

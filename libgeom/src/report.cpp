@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 
+#include "geom/json_quote.h"
 #include "json_write.h"
 
 namespace geom {
@@ -33,17 +34,6 @@ std::vector<std::pair<std::string, std::vector<std::pair<std::string, uint64_t>>
 }
 
 }  // namespace
-
-uint64_t peak_rss_bytes() {
-  FILE* f = std::fopen("/proc/self/status", "r");
-  if (!f) return 0;
-  char line[256];
-  uint64_t kb = 0;
-  while (std::fgets(line, sizeof line, f))
-    if (std::strncmp(line, "VmHWM:", 6) == 0) kb = std::strtoull(line + 6, nullptr, 10);
-  std::fclose(f);
-  return kb * 1024;
-}
 
 void analyze(const Scene& scene, const PipelineOptions& options, Report& report) {
   PipelineOptions o = options;

@@ -1,6 +1,6 @@
 // Static shadow volumes for any mesh (see geom/shadow_volume.h for why the
-// stencil counts are right). Seeds: 004_3832d04cb6bd7525.txt section 4, the
-// z-fail baseline of 001_0225cc27c0669b01.txt section 5.
+// stencil counts are right). Arneson n.d. (Real-Time Shadows), Sect. 4, and
+// the z-fail baseline of Kenzel 2013, Sect. 5 (Everitt and Kilgard 2002).
 //
 // One walk over the edge table (double-sided, the default): each edge's live
 // faces are gathered once, the components joined (a union-find whose roots
@@ -39,180 +39,232 @@ inline void unite(uint32_t* parent, uint32_t a, uint32_t b) {
     parent[a] = b;
 }
 
-// The volume; `planes` (fp's plane table, copied or moved) becomes sv.planes.
-ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t triangle_count, const Topology& topology,
-                   const FacePlanes& fp, std::vector<float> planes, const ShadowVolumeOptions& options) {
-  ShadowVolume sv;
-  ShadowVolumeStats& st = sv.stats;
-  for (int a = 0; a < 3; ++a) sv.origin[a] = fp.origin[a];
-  sv.planes = std::move(planes);
-  st.edges = topology.edges.size();
-  const uint32_t* face_plane = fp.face_plane.data();
-  const bool ids = options.component_ids || options.one_sided_closed;
-  // Streamed (options.sides_out, caps_out), the records go out a piece at a
-  // time and only a piece is ever held.
-  constexpr size_t kPiece = 4096;
-  const bool stream_sides = bool(options.sides_out), stream_caps = bool(options.caps_out);
-  const bool side_ids = ids && !stream_sides, cap_ids = ids && !stream_caps;
-  uint64_t sides_sent = 0, caps_sent = 0;
+// Builds one volume: the state the walks over edges and faces share.
+// Streamed (options.sides_out, caps_out), the records go out a piece at a
+// time and only a piece is ever held.
+class VolumeBuilder {
+ public:
+  VolumeBuilder(PositionSpan positions, const uint32_t* indices, size_t triangle_count, const Topology& topology,
+                const FacePlanes& fp, std::vector<float> planes, const ShadowVolumeOptions& options)
+      : indices_(indices),
+        triangle_count_(triangle_count),
+        topology_(topology),
+        fp_(fp),
+        options_(options),
+        face_plane_(fp.face_plane.data()),
+        ids_(options.component_ids || options.one_sided_closed),
+        stream_sides_(bool(options.sides_out)),
+        stream_caps_(bool(options.caps_out)),
+        side_ids_(ids_ && !stream_sides_),
+        cap_ids_(ids_ && !stream_caps_) {
+    for (int a = 0; a < 3; ++a) sv_.origin[a] = fp.origin[a];
+    sv_.planes = std::move(planes);
+    sv_.stats.edges = topology.edges.size();
+    to_local(positions);
+    component_.resize(ids_ ? triangle_count : 0);
+    parent_ = component_.data();
+    for (size_t f = 0; f < component_.size(); ++f) parent_[f] = uint32_t(f);
+  }
+
+  ShadowVolume build() {
+    // One-sided, a pair's multiplicity depends on its component's closedness:
+    // the components first. Double-sided, they are joined in the records' walk.
+    if (options_.one_sided_closed) {
+      for (const Edge& e : topology_.edges) {
+        live_.gather(topology_, fp_, e);
+        if (!live_.empty()) join();
+      }
+      number();
+    }
+    write_sides();
+    if (ids_ && !numbered_) {
+      number();
+      for (uint32_t& id : sv_.side_component) id = component_[id];  // faces to components
+    }
+    ShadowVolumeStats& st = sv_.stats;
+    st.components = sv_.component_closed.size();
+    for (uint8_t c : sv_.component_closed) st.closed_components += c;
+    write_caps();
+    st.sides = sides_sent_ + sv_.sides.size();
+    st.caps = caps_sent_ + sv_.caps.size();
+    const uint64_t plane_bytes = 16 * uint64_t(sv_.planes.size() / 4);
+    st.bytes = st.sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
+    st.naive_bytes = st.naive_sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
+    return std::move(sv_);
+  }
+
+ private:
+  static constexpr size_t kPiece = 4096;
 
   // The vertices in the local frame, each converted once (the records copy them).
-  std::vector<float> local(3 * positions.size());
-  for (size_t v = 0; v < positions.size(); ++v) {
-    const Float3& p = positions[v];
-    local[3 * v] = float(double(p.x) - sv.origin[0]);
-    local[3 * v + 1] = float(double(p.y) - sv.origin[1]);
-    local[3 * v + 2] = float(double(p.z) - sv.origin[2]);
+  void to_local(PositionSpan positions) {
+    local_.resize(3 * positions.size());
+    for (size_t v = 0; v < positions.size(); ++v) {
+      const Float3& p = positions[v];
+      local_[3 * v] = float(double(p.x) - sv_.origin[0]);
+      local_[3 * v + 1] = float(double(p.y) - sv_.origin[1]);
+      local_[3 * v + 2] = float(double(p.z) - sv_.origin[2]);
+    }
+    lp_ = local_.data();
   }
-  const float* lp = local.data();
 
   // Components over non-degenerate faces (a component is closed when each of
   // its edges has exactly two such faces in opposite directions): a
   // union-find, then in the same array each face's dense id, in face order.
-  std::vector<uint32_t> component(ids ? triangle_count : 0);
-  uint32_t* parent = component.data();
-  for (size_t f = 0; f < component.size(); ++f) parent[f] = uint32_t(f);
-  std::vector<uint32_t> open_faces;  // a face of each edge that is not a pair: its component is open
-  detail::LiveFaces live;            // the non-degenerate faces of one edge, as edge_faces entries
-  const auto is_pair = [&]() { return live.size() == 2 && ((live[0] ^ live[1]) & 1u); };
-  const auto join = [&]() {  // the gathered edge's faces
-    for (size_t i = 1; i < live.size(); ++i) unite(parent, live[0] >> 1, live[i] >> 1);
-    if (!is_pair()) open_faces.push_back(live[0] >> 1);
-  };
-  bool numbered = false;
-  const auto number = [&]() {  // a face's parent is never after it: its slot already holds the id
-    for (size_t f = 0; f < triangle_count; ++f) {
-      if (face_plane[f] == FacePlanes::kNone) continue;
-      const uint32_t p = parent[f];
+  bool is_pair() const { return live_.size() == 2 && ((live_[0] ^ live_[1]) & 1u); }
+  void join() {  // the gathered edge's faces
+    for (size_t i = 1; i < live_.size(); ++i) unite(parent_, live_[0] >> 1, live_[i] >> 1);
+    if (!is_pair()) open_faces_.push_back(live_[0] >> 1);
+  }
+  void number() {  // a face's parent is never after it: its slot already holds the id
+    for (size_t f = 0; f < triangle_count_; ++f) {
+      if (face_plane_[f] == FacePlanes::kNone) continue;
+      const uint32_t p = parent_[f];
       if (p == f) {
-        component[f] = uint32_t(sv.component_closed.size());
-        sv.component_closed.push_back(1);
+        component_[f] = uint32_t(sv_.component_closed.size());
+        sv_.component_closed.push_back(1);
       } else {
-        component[f] = component[p];
+        component_[f] = component_[p];
       }
     }
-    for (uint32_t f : open_faces) sv.component_closed[component[f]] = 0;
-    std::vector<uint32_t>().swap(open_faces);
-    numbered = true;
-  };
-  const auto double_sided = [&](uint32_t f) { return !options.one_sided_closed || !sv.component_closed[component[f]]; };
-  // One-sided, a pair's multiplicity depends on its component's closedness:
-  // the components first. Double-sided, they are joined in the records' walk.
-  if (options.one_sided_closed) {
-    for (const Edge& e : topology.edges) {
-      live.gather(topology, fp, e);
-      if (!live.empty()) join();
-    }
-    number();
+    for (uint32_t f : open_faces_) sv_.component_closed[component_[f]] = 0;
+    std::vector<uint32_t>().swap(open_faces_);
+    numbered_ = true;
   }
+  bool double_sided(uint32_t f) const { return !options_.one_sided_closed || !sv_.component_closed[component_[f]]; }
 
-  // Side records, in edge order; room for the most (a pair: two records, else
-  // one per face), so the buffers never grow.
-  if (stream_sides) {
-    sv.sides.reserve(kPiece);
-  } else {
-    const size_t most = topology.edge_faces.size();  // the sum of those over the edges
-    sv.sides.reserve(most);
-    if (side_ids) sv.side_component.reserve(most);
+  void send_sides() {
+    options_.sides_out(sv_.sides.data(), sv_.sides.size());
+    sides_sent_ += sv_.sides.size();
+    sv_.sides.clear();
   }
-  const auto send_sides = [&] {
-    options.sides_out(sv.sides.data(), sv.sides.size());
-    sides_sent += sv.sides.size();
-    sv.sides.clear();
-  };
   // Each record written in place, field by field (one built aside and copied
   // in stalls on its partly written bytes). Its id: the component once
   // numbered, else its face for now.
-  const auto add_side = [&](uint32_t v0, uint32_t v1, uint32_t plane_a, uint32_t plane_b, uint32_t face) {
-    SvSide& s = sv.sides.emplace_back();
-    std::memcpy(s.p0, lp + 3 * size_t(v0), 12);
-    std::memcpy(s.p1, lp + 3 * size_t(v1), 12);
+  void add_side(uint32_t v0, uint32_t v1, uint32_t plane_a, uint32_t plane_b, uint32_t face) {
+    SvSide& s = sv_.sides.emplace_back();
+    std::memcpy(s.p0, lp_ + 3 * size_t(v0), 12);
+    std::memcpy(s.p1, lp_ + 3 * size_t(v1), 12);
     s.plane_a = plane_a;
     s.plane_b = plane_b;
-    if (side_ids)
-      sv.side_component.push_back(numbered ? component[face] : face);
-    else if (stream_sides && sv.sides.size() == kPiece)
+    if (side_ids_)
+      sv_.side_component.push_back(numbered_ ? component_[face] : face);
+    else if (stream_sides_ && sv_.sides.size() == kPiece)
       send_sides();
-  };
-  for (const Edge& e : topology.edges) {
-    live.gather(topology, fp, e);
-    if (live.empty()) continue;
-    st.naive_sides += live.size();
-    if (ids && !numbered) join();
+  }
+
+  // One edge's side records from its gathered live faces: a pair (two faces
+  // in opposite directions) gives one record, or two where double-sided,
+  // unless its planes are one; any other edge one record per face.
+  void edge_sides(const Edge& e) {
+    ShadowVolumeStats& st = sv_.stats;
     if (is_pair()) {
-      const uint32_t fa = (live[0] & 1u) ? live[1] >> 1 : live[0] >> 1;  // traverses v0 -> v1
-      const uint32_t fb = (live[0] & 1u) ? live[0] >> 1 : live[1] >> 1;
-      const uint32_t pa = face_plane[fa], pb = face_plane[fb];
+      const uint32_t fa = (live_[0] & 1u) ? live_[1] >> 1 : live_[0] >> 1;  // traverses v0 -> v1
+      const uint32_t fb = (live_[0] & 1u) ? live_[0] >> 1 : live_[1] >> 1;
+      const uint32_t pa = face_plane_[fa], pb = face_plane_[fb];
       const bool ds = double_sided(fa);
       if (pa == pb) {
         ++st.skipped_coplanar;
         st.skipped_coplanar_records += ds ? 2 : 1;
-        continue;
+        return;
       }
       ++st.pair_edges;
       add_side(e.v0, e.v1, pa, pb, fa);
       if (ds) add_side(e.v0, e.v1, pa | SvSide::kSecond, pb, fa);  // multiplicity up to 2: the second copy
-      continue;
+      return;
     }
-    for (uint32_t ef : live) {
+    for (uint32_t ef : live_) {
       const bool reversed = ef & 1u;
-      const uint32_t plane = face_plane[ef >> 1];
+      const uint32_t plane = face_plane_[ef >> 1];
       ++st.single_records;
       add_side(reversed ? e.v1 : e.v0, reversed ? e.v0 : e.v1, plane, plane | SvSide::kFlip, ef >> 1);
     }
   }
-  if (stream_sides) {
-    if (!sv.sides.empty()) send_sides();
-    std::vector<SvSide>().swap(sv.sides);
-  }
-  if (ids && !numbered) {
-    number();
-    for (uint32_t& id : sv.side_component) id = component[id];  // faces to components
-  }
-  st.components = sv.component_closed.size();
-  for (uint8_t c : sv.component_closed) st.closed_components += c;
 
-  // Caps: every non-degenerate face.
-  if (stream_caps) {
-    sv.caps.reserve(kPiece);
-  } else {
-    const size_t caps = triangle_count - std::min<uint64_t>(fp.degenerate_faces, triangle_count);
-    sv.caps.reserve(caps);
-    if (cap_ids) sv.cap_component.reserve(caps);
-  }
-  const auto send_caps = [&] {
-    options.caps_out(sv.caps.data(), sv.caps.size());
-    caps_sent += sv.caps.size();
-    sv.caps.clear();
-  };
-  for (size_t f = 0; f < triangle_count; ++f) {
-    if (face_plane[f] == FacePlanes::kNone) {
-      ++st.degenerate_faces;
-      continue;
+  // Side records, in edge order; room for the most (a pair: two records, else
+  // one per face), so the buffers never grow.
+  void write_sides() {
+    if (stream_sides_) {
+      sv_.sides.reserve(kPiece);
+    } else {
+      const size_t most = topology_.edge_faces.size();  // the sum of those over the edges
+      sv_.sides.reserve(most);
+      if (side_ids_) sv_.side_component.reserve(most);
     }
-    SvCap& c = sv.caps.emplace_back();
-    const uint32_t* v = indices + 3 * f;
-    std::memcpy(c.a, lp + 3 * size_t(v[0]), 12);
-    std::memcpy(c.b, lp + 3 * size_t(v[1]), 12);
-    std::memcpy(c.c, lp + 3 * size_t(v[2]), 12);
-    const bool ds = double_sided(uint32_t(f));
-    c.plane = face_plane[f] | (ds ? SvCap::kDoubleSided : 0u);
-    ++(ds ? st.double_sided_faces : st.one_sided_faces);
-    if (cap_ids)
-      sv.cap_component.push_back(component[f]);
-    else if (stream_caps && sv.caps.size() == kPiece)
-      send_caps();
+    for (const Edge& e : topology_.edges) {
+      live_.gather(topology_, fp_, e);
+      if (live_.empty()) continue;
+      sv_.stats.naive_sides += live_.size();
+      if (ids_ && !numbered_) join();
+      edge_sides(e);
+    }
+    if (stream_sides_) {
+      if (!sv_.sides.empty()) send_sides();
+      std::vector<SvSide>().swap(sv_.sides);
+    }
   }
-  if (stream_caps) {
-    if (!sv.caps.empty()) send_caps();
-    std::vector<SvCap>().swap(sv.caps);
+
+  void send_caps() {
+    options_.caps_out(sv_.caps.data(), sv_.caps.size());
+    caps_sent_ += sv_.caps.size();
+    sv_.caps.clear();
   }
-  st.sides = sides_sent + sv.sides.size();
-  st.caps = caps_sent + sv.caps.size();
-  const uint64_t plane_bytes = 16 * uint64_t(sv.planes.size() / 4);
-  st.bytes = st.sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
-  st.naive_bytes = st.naive_sides * sizeof(SvSide) + st.caps * sizeof(SvCap) + plane_bytes;
-  return sv;
+  // Caps: every non-degenerate face.
+  void write_caps() {
+    ShadowVolumeStats& st = sv_.stats;
+    if (stream_caps_) {
+      sv_.caps.reserve(kPiece);
+    } else {
+      const size_t caps = triangle_count_ - std::min<uint64_t>(fp_.degenerate_faces, triangle_count_);
+      sv_.caps.reserve(caps);
+      if (cap_ids_) sv_.cap_component.reserve(caps);
+    }
+    for (size_t f = 0; f < triangle_count_; ++f) {
+      if (face_plane_[f] == FacePlanes::kNone) {
+        ++st.degenerate_faces;
+        continue;
+      }
+      SvCap& c = sv_.caps.emplace_back();
+      const uint32_t* v = indices_ + 3 * f;
+      std::memcpy(c.a, lp_ + 3 * size_t(v[0]), 12);
+      std::memcpy(c.b, lp_ + 3 * size_t(v[1]), 12);
+      std::memcpy(c.c, lp_ + 3 * size_t(v[2]), 12);
+      const bool ds = double_sided(uint32_t(f));
+      c.plane = face_plane_[f] | (ds ? SvCap::kDoubleSided : 0u);
+      ++(ds ? st.double_sided_faces : st.one_sided_faces);
+      if (cap_ids_)
+        sv_.cap_component.push_back(component_[f]);
+      else if (stream_caps_ && sv_.caps.size() == kPiece)
+        send_caps();
+    }
+    if (stream_caps_) {
+      if (!sv_.caps.empty()) send_caps();
+      std::vector<SvCap>().swap(sv_.caps);
+    }
+  }
+
+  const uint32_t* indices_;
+  size_t triangle_count_;
+  const Topology& topology_;
+  const FacePlanes& fp_;
+  const ShadowVolumeOptions& options_;
+  const uint32_t* face_plane_;
+  const bool ids_, stream_sides_, stream_caps_, side_ids_, cap_ids_;
+  ShadowVolume sv_;
+  std::vector<float> local_;
+  const float* lp_ = nullptr;
+  std::vector<uint32_t> component_;
+  uint32_t* parent_ = nullptr;
+  std::vector<uint32_t> open_faces_;  // a face of each edge that is not a pair: its component is open
+  detail::LiveFaces live_;            // the non-degenerate faces of one edge, as edge_faces entries
+  bool numbered_ = false;
+  uint64_t sides_sent_ = 0, caps_sent_ = 0;
+};
+
+// The volume; `planes` (fp's plane table, copied or moved) becomes sv.planes.
+ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t triangle_count, const Topology& topology,
+                   const FacePlanes& fp, std::vector<float> planes, const ShadowVolumeOptions& options) {
+  return VolumeBuilder(positions, indices, triangle_count, topology, fp, std::move(planes), options).build();
 }
 
 }  // namespace

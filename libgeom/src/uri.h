@@ -1,4 +1,4 @@
-// Private: the file a glTF's external URI names (issue 15), one decoding for
+// Private: the file a glTF's external URI names, one decoding for
 // reading it and for listing it in a depfile.
 #pragma once
 #include <string>

@@ -160,11 +160,10 @@ struct CrackStats {
   double max_gap = 0;
 };
 
-CrackStats check_patches(const RawBsp& raw, const Scene& s, int level) {
-  CrackStats st;
-  // Where each patch's grid lies in the scene (its first triangle starts at the grid's first point).
+// Where each patch's grid lies in the scene (its first triangle starts at the
+// grid's first point); the patches' triangles into `patch_tris`.
+std::vector<PatchRef> locate_patches(const RawBsp& raw, const Scene& s, int level, std::vector<uint32_t>& patch_tris) {
   std::vector<PatchRef> patches;
-  std::vector<uint32_t> patch_tris;
   for (size_t t = 0; t < s.triangle_count(); ++t) {
     const uint32_t f = s.sources[t].primitive;
     if (raw.faces[f].type != 2) continue;
@@ -174,8 +173,14 @@ CrackStats check_patches(const RawBsp& raw, const Scene& s, int level) {
     patches.push_back(
         {f, s.indices[3 * t], uint32_t((face.width - 1) / 2 * level + 1), uint32_t((face.height - 1) / 2 * level + 1)});
   }
-  st.patches = patches.size();
-  // Border curves keyed by their control points (bits, -0 as +0), in a canonical direction.
+  return patches;
+}
+
+// Border curves keyed by their control points (bits, -0 as +0), in a
+// canonical direction: every patch that shares a curve has the same
+// tessellated points along it.
+void check_shared_curves(const RawBsp& raw, const Scene& s, const std::vector<PatchRef>& patches, int level,
+                         CrackStats& st) {
   using Key = std::array<uint32_t, 9>;
   struct Use {
     size_t patch;
@@ -216,7 +221,10 @@ CrackStats check_patches(const RawBsp& raw, const Scene& s, int level) {
         EXPECT_EQ(0, std::memcmp(point(uses[0], i), point(uses[u], i), 12))
             << "faces " << patches[uses[0].patch].face << " and " << patches[uses[u].patch].face << " point " << i;
   }
-  // Cracks: distinct boundary vertices of the welded patch surface that almost coincide.
+}
+
+// Cracks: distinct boundary vertices of the welded patch surface that almost coincide.
+void count_cracks(const Scene& s, const std::vector<uint32_t>& patch_tris, CrackStats& st) {
   WeldResult w = weld(positions_of(s.positions.data(), s.vertex_count()), patch_tris.data(), patch_tris.size());
   Topology topo =
       build_topology(positions_of(w.positions.data(), w.vertex_count()), w.indices.data(), patch_tris.size() / 3);
@@ -243,6 +251,15 @@ CrackStats check_patches(const RawBsp& raw, const Scene& s, int level) {
         }
     cells[key3(cell(p[0]), cell(p[1]), cell(p[2]))].push_back(v);
   }
+}
+
+CrackStats check_patches(const RawBsp& raw, const Scene& s, int level) {
+  CrackStats st;
+  std::vector<uint32_t> patch_tris;
+  const std::vector<PatchRef> patches = locate_patches(raw, s, level, patch_tris);
+  st.patches = patches.size();
+  check_shared_curves(raw, s, patches, level, st);
+  count_cracks(s, patch_tris, st);
   return st;
 }
 

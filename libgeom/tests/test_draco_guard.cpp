@@ -307,7 +307,7 @@ TEST(DracoGuard, SharedStreams) {
   EXPECT_GE(with_texcoords, 1u);
 }
 
-// libdraco's encoder no longer writes the deprecated texture-coordinate scheme,
+// libdraco 1.5's encoder does not write the deprecated texture-coordinate scheme,
 // so its two guarded instantiations are reached by streams whose method byte is
 // turned from the portable scheme into the deprecated one: each such stream is
 // decoded or refused, the deprecated decoders check its count, and an absurd

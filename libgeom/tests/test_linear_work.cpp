@@ -1,5 +1,5 @@
 // Every step of the bake and of `geombake info` stays linear in the triangles
-// whatever the valences (issue 14): the work the valence-sensitive stages count
+// whatever the valences: the work the valence-sensitive stages count
 // (libgeom/src/work_count.h: topology's edge grouping and duplicate search, the
 // half-edge summary on either path, adjacency) at 4n triangles is at most 5x
 // the work at n (linear: 4x; the per-vertex sorts add a log factor, 4.6x at

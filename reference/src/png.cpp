@@ -1,9 +1,23 @@
-// PNG writer and reader over the stb copies compiled in third_party/tinygltf_impl.cpp
-// (declared here, not defined again: see TOOLCHAIN.md on libdraco's own copies).
+// PNG writer and reader over stb_image / stb_image_write, compiled here with
+// static linkage (STB_*_STATIC): no stbi_* symbol is global, so neither
+// libgeom's own copy (libgeom/third_party) nor libdraco's (TOOLCHAIN.md) is bound to.
 #include "geom/png.h"
 
+#define STB_IMAGE_IMPLEMENTATION
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#endif
 #include <stb_image.h>
 #include <stb_image_write.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 namespace geom {
 

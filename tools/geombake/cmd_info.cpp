@@ -9,11 +9,15 @@
 #include "cli/args.h"
 #include "geom/atomic_file.h"
 #include "geom/import.h"
+#include "geom/process.h"
 #include "geom/report.h"
+#include "geombake/bake_plan.h"
 #include "geombake/command.h"
+#include "geombake/error_kind.h"
 #include "geombake/fault.h"
 #include "geombake/flags.h"
 #include "geombake/inputs.h"
+#include "geombake/names.h"
 
 namespace geombake {
 namespace {
@@ -23,7 +27,9 @@ const char* kInfoHelp =
     "  Prints the topology report of each input (after an exact weld, or --weld-tolerance).\n"
     "  FILE may be ARCHIVE.pk3:path/inside.bsp, or ARCHIVE.pk3 for every map inside.\n"
     "options:\n"
-    "  --json              one JSON object per input, one per line\n"
+    "  --json              one JSON object per input, one per line, failed inputs included:\n"
+    "                      {\"input\": ..., \"ok\": false, \"error\": ..., \"error_kind\": ...}\n"
+    "                      (error kinds: docs/build-step.md)\n"
     "  -o FILE             write the report to FILE (atomically) instead of stdout\n"
     "  -v                  timing and peak memory per stage\n"
     "  --weld-tolerance T  merge vertices closer than T (default 0: exact positions)\n"
@@ -58,6 +64,7 @@ int run_info(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "Error: no input file\n%s", kInfoHelp);
     return 2;
   }
+  if (args.has("-o") && !check_output_file(inputs, "-o", args.get("-o"))) return 2;  // never an input
   const bool json = args.has("--json"), verbose = args.has("-v");
   geom::PipelineOptions pipeline = shared.pipeline;
   pipeline.timing = verbose;
@@ -91,9 +98,14 @@ int run_info(const std::vector<std::string>& argv) {
     if (!error.empty()) {
       std::fprintf(stderr, "Error: %s\n", error.c_str());
       ++failed;
-      continue;
+      if (!json) continue;
+      const ErrorKind kind = timed_out ? ErrorKind::Timeout : classify_import_error(input, error);
+      *text = "{\"input\":" + json_quote(input) + ",\"ok\":false,\"error\":" + json_quote(error) +
+              ",\"error_kind\":\"" + error_kind_name(kind) + "\"}\n";
+    } else if (json) {  // the report's object, its input and "ok" first
+      *text = "{\"input\":" + json_quote(input) + ",\"ok\":true," + text->substr(1);
     }
-    if (!json)
+    if (!json && error.empty())
       for (const std::string& w : *warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
     if (args.has("-o"))
       out += *text;

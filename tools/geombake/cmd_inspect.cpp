@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/args.h"
+#include "geom/baked_file.h"
 #include "geom/baked_reader.h"
 #include "geombake/command.h"
 #include "geombake/names.h"

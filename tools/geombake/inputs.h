@@ -12,7 +12,8 @@
 namespace geombake {
 
 // Expands each argument: ARCHIVE.pk3 (no ":member") becomes every .bsp inside
-// it, a directory every mesh file under it (recursive, sorted), anything
+// it, a directory every mesh file under it (recursive, sorted; an archive
+// found there as an archive argument), anything
 // else stays as it is (an archive that cannot be listed or holds no map too,
 // and a mesh-named entry of a directory that is not a regular file: their
 // import reports why). Returns true.

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "geom/json_quote.h"
 #include "geom/report.h"
 
 namespace geombake {

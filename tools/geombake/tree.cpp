@@ -83,7 +83,7 @@ struct Walk {
         dir(p, r);
       } else if (s.type() != fs::file_type::regular) {
         if (is_mesh_name(n)) warnings.push_back(p.string() + ": not a regular file, skipped");
-      } else if (is_mesh_name(n)) {
+      } else if (is_mesh_name(n) || is_archive(n)) {
         files.push_back(r);
       } else {
         const size_t dot = n.find_last_of('.');
@@ -92,6 +92,22 @@ struct Walk {
     }
   }
 };
+
+// Every map of the archive at `path`: rel = rel_prefix + its path inside,
+// stored name = name + ":" + its path inside. An archive that cannot be listed,
+// or holds no map, stays one input: its import says why (`Error: FILE:
+// cause`), and the other inputs go on.
+void add_archive(const std::string& path, const std::string& rel_prefix, const std::string& name,
+                 std::vector<TreeInput>& inputs) {
+  std::vector<std::string> members;
+  std::string error;
+  if (!geom::list_archive_members(path, ".bsp", members, error) || members.empty()) {
+    const std::string rel = rel_prefix.empty() ? base_name(path) : rel_prefix.substr(0, rel_prefix.size() - 1);
+    inputs.push_back({path, rel, name});
+    return;
+  }
+  for (const std::string& m : members) inputs.push_back({path + ":" + m, rel_prefix + m, name + ":" + m});
+}
 
 }  // namespace
 
@@ -116,16 +132,8 @@ bool expand_tree_inputs(const std::vector<std::string>& args, std::vector<TreeIn
                         std::vector<std::string>& warnings, bool& folder) {
   for (const std::string& a : args) {
     if (is_archive(a)) {
-      std::vector<std::string> names;
-      std::string error;
       folder = true;
-      // An archive that cannot be listed, or holds no map, stays one input: its
-      // import says why (`Error: FILE: cause`), and the other inputs go on (issue 15).
-      if (!geom::list_archive_members(a, ".bsp", names, error) || names.empty()) {
-        inputs.push_back({a, base_name(a), base_name(a)});
-        continue;
-      }
-      for (const std::string& n : names) inputs.push_back({a + ":" + n, n, base_name(a) + ":" + n});
+      add_archive(a, "", base_name(a), inputs);
       continue;
     }
     std::error_code ec;
@@ -134,7 +142,12 @@ bool expand_tree_inputs(const std::vector<std::string>& args, std::vector<TreeIn
       std::vector<std::string> files;
       walk_directory(a, files, warnings);
       const std::string dir = ends_with(a, "/") ? a : a + "/";
-      for (const std::string& f : files) inputs.push_back({dir + f, f, f});
+      for (const std::string& f : files) {
+        if (is_archive(f))
+          add_archive(dir + f, f + "/", f, inputs);  // as an ARCHIVE.pk3 argument, under its path in the tree
+        else
+          inputs.push_back({dir + f, f, f});
+      }
       continue;
     }
     const auto [archive, member] = split_member(a);

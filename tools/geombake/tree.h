@@ -10,7 +10,10 @@
 //       twice, e.g. through a symlink loop, skipped with a warning, so are
 //       entries that are not regular files or cannot be read; files of other
 //       formats are counted in one warning); each mesh file's rel and stored
-//       name are its path relative to D;
+//       name are its path relative to D; an archive found there (.pk3, .zip)
+//       is baked as an ARCHIVE.pk3 argument is, each map's rel being
+//       "PATH.pk3/member" and its stored name "PATH.pk3:member", PATH the
+//       archive's path relative to D;
 //   ARCHIVE.pk3 (a whole archive): each .bsp member's rel is its path inside
 //       the archive; ARCHIVE.pk3:member one member, rel = the member's base
 //       name; both store "ARCHIVE.pk3:member" with the archive's base name.
@@ -35,7 +38,8 @@ struct TreeInput {
 bool expand_tree_inputs(const std::vector<std::string>& args, std::vector<TreeInput>& inputs,
                         std::vector<std::string>& warnings, bool& folder);
 
-// The mesh files under `dir`, recursively, as paths relative to it, sorted.
+// The mesh files and archives (.pk3, .zip) under `dir`, recursively, as paths
+// relative to it, sorted.
 void walk_directory(const std::string& dir, std::vector<std::string>& rel_files, std::vector<std::string>& warnings);
 
 // True if the file name has one of the importers' extensions (any case).

@@ -108,10 +108,20 @@ BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions&
 // out.error() says it.
 BakeResult bake_scene(Scene&& scene, const std::string& name, const BakeOptions& options, BakedFileWriter& out);
 
+// The source name a bake of `input` stores (the report's "file"), as
+// `geombake bake` stores it for an input named on its command line: the base
+// name ("dir/pig.off" -> "pig.off"), or for "dir/maps.pk3:maps/x.bsp" the
+// archive's base name and the member ("maps.pk3:maps/x.bsp"). No path of the
+// machine is stored, so the bytes do not depend on where the input lies.
+std::string stored_name(const std::string& input);
+
 // Imports `input`, bakes it and writes the container to `output` atomically:
 // on any failure no output file is created (an existing one is left as it was).
-// `result.sections` holds what was written.
+// `result.sections` holds what was written. The stored name is `name`, or
+// stored_name(input) when empty (the importer's warnings name it too), so the
+// file is byte for byte `geombake bake INPUT -o OUTPUT`'s with the same options;
+// errors name `input` as given.
 BakeResult bake_file(const std::string& input, const std::string& output, const BakeOptions& options = {},
-                     const ImportOptions& import_options = {});
+                     const ImportOptions& import_options = {}, const std::string& name = {});
 
 }  // namespace geom

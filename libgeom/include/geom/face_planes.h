@@ -4,8 +4,8 @@
 // light, in the vertex shader, whether the light is in front of a face by
 // evaluating that face's stored plane. Two faces that share a stored plane are
 // classified identically for every light, bit for bit, so the edge between them
-// can never open a quad: it is not emitted at all (MISSION.md "only what a
-// scene needs") and no crack can appear where it was.
+// can never open a quad: it is not emitted at all ("only what a scene
+// needs") and no crack can appear where it was.
 //
 // Local frame. Buffers store float positions and planes relative to `origin`
 // (the centre of the bounding box of the referenced vertices, in double). A
@@ -15,6 +15,9 @@
 // Plane: (nx, ny, nz, d), n the unit normal of the face's front (the side from
 // which the triangle i0 i1 i2 is counter-clockwise), n . p + d = 0 for p in the
 // local frame. Computed in double from the welded positions, stored as float.
+// (The baked file's FacePlanes section holds them moved to input coordinates,
+// d - n . origin, one per triangle; the ESM and volume plane tables stay local:
+// geom/baked_reader.h's table gives each section's frame.)
 //
 // Coplanar groups (region growing, deterministic, in triangle order): a face
 // not yet grouped starts a group whose plane is its own; the group grows over

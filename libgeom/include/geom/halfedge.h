@@ -1,10 +1,11 @@
-// geom/halfedge.h: what a half-edge structure (OpenMesh) makes of the mesh.
+// geom/halfedge.h: what a half-edge structure (OpenMesh's TriMesh) makes of
+// the mesh, computed from the mesh's edge table without one.
 //
-// OpenMesh's TriMesh is the right tool for walking a 2-manifold: boundary
-// loops (holes) and the genus of closed components. It refuses faces that
-// would make an edge complex (3 or more faces) or a vertex non-manifold; the
-// edge table of geom/topology.h keeps those, and this summary counts them, so
-// every face is accounted for: added + refused + skipped == triangles.
+// A half-edge structure refuses faces that would make an edge complex (3 or
+// more faces) or a vertex non-manifold; the edge table of geom/topology.h keeps
+// those, and this summary counts them, so every face is accounted for:
+// added + refused + skipped == triangles. The counts are OpenMesh's (its
+// add_face, faces offered in order); the library does not link OpenMesh.
 #pragma once
 #include <cstdint>
 
@@ -20,20 +21,16 @@ struct HalfedgeSummary {
   uint64_t boundary_loops = 0;  // holes of the accepted surface
 };
 
-// `positions`: welded vertices; `indices`: 3 per triangle, welded. Faces are
-// offered in order, so which faces are refused is deterministic.
-HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count);
-
-// The same summary read from the mesh's edge table (geom/topology.h, built from
-// the same welded indices) where it tells the answer: when no edge is
-// non-manifold or inconsistent and every vertex's faces form one fan,
+// `positions`: welded vertices; `indices`: 3 per triangle, welded;
+// `topology`: their edge table (geom/topology.h). Where the edge table tells
+// the answer (no edge is non-manifold or inconsistent and every vertex's
+// faces form one fan),
 // OpenMesh takes every face (refused = 0) and the holes are the cycles of
 // boundary edges, found here in linear time. Otherwise OpenMesh's add_face is
 // replayed on the edge table, face by face in order (its answer depends on
 // the order faces are offered), with what OpenMesh finds by walking round a
-// vertex read from the two ends of each fan: the function above's answer, in
-// linear time whatever the valences (tests/test_halfedge.cpp holds the two
-// equal on every mesh the tests use, random soups and many-fan "stars").
+// vertex read from the two ends of each fan: OpenMesh's answer, in linear
+// time whatever the valences.
 HalfedgeSummary summarize_halfedges(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                     const Topology& topology);
 

@@ -47,16 +47,4 @@ void report_of(const Scene& scene, const Pipeline& run, Report& report);
 std::string report_json(const Report& report);
 std::string report_text(const Report& report);
 
-// `s` as a JSON string literal, quotes included, valid whatever bytes `s`
-// holds (the report's own strings, geombake's file names): valid UTF-8 is kept
-// as it is ('"', '\\', \n, \r, \t and other control characters escaped);
-// each byte that is not part of valid UTF-8 becomes \udcXX, the lone low
-// surrogate U+DC00 + byte (PEP 383's "surrogateescape"), so no name is lost and
-// none is confused with another: Python's
-// json.loads(text).encode("utf-8", "surrogateescape") gives the bytes back.
-std::string json_quote(const std::string& s);
-
-// The process's peak resident set size in bytes (Linux VmHWM), 0 if unknown.
-uint64_t peak_rss_bytes();
-
 }  // namespace geom

@@ -1,7 +1,7 @@
 // geom/span.h: a borrowed, strided, read-only view of vertex data.
 //
-// One type for "pointer + count + byte stride" so the two are never mixed up
-// (STYLE.md, "Avoid"). A tightly packed float xyz array has stride 12.
+// One type for "pointer + count + byte stride" so a pointer and a stride are
+// never passed separately and mixed up. A tightly packed float xyz array has stride 12.
 #pragma once
 #include <cassert>
 #include <cstddef>

@@ -3,7 +3,7 @@
 // Built from welded indices (geom/weld.h). Nothing is lost on non-manifold
 // input: every non-collapsed triangle contributes its three edges, however many
 // faces an edge has (OpenMesh's add_face refuses such "complex edges"; this
-// table does not, and geom/halfedge.h uses OpenMesh only where it serves).
+// table does not, and geom/halfedge.h counts the faces OpenMesh would refuse).
 //
 // Definitions (all over the non-collapsed triangles):
 //   collapsed triangle  two of its welded indices are equal; it has no edges

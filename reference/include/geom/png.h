@@ -1,8 +1,8 @@
 // geom/png.h: write and read 8-bit PNG images (grey, grey+alpha, RGB, RGBA).
 //
 // Pixels are row-major, top row first, `channels` bytes per pixel, no padding.
-// Backed by the stb_image / stb_image_write copies compiled into libgeom's
-// third-party library; nothing of stb appears here.
+// Backed by stb_image / stb_image_write, compiled with static linkage in
+// png.cpp; nothing of stb appears here.
 // Errors are returned as "FILE: what is wrong", never thrown.
 #pragma once
 #include <cstdint>
