@@ -3,7 +3,7 @@
 // bounds S (and the casters' hull), the light frustum L, the view frustum V
 // cut at S's far side, and L's near plane, placed with the receivers.
 //
-// References: seed 002_147d3d07b97c563e.txt, Stamminger & Drettakis,
+// References: Stamminger and Drettakis 2002,
 // "Perspective Shadow Maps", Sect. 4.1 (H = conv(V u {l}) n S n L, here with
 // the receiver region R = V n S n L in V's place).
 #include "focus_frame.h"

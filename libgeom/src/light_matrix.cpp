@@ -3,7 +3,7 @@
 // LiSPSM / uniform matrices of the focus body H (focus_frame.h).
 //
 // References:
-//   seed 002_147d3d07b97c563e.txt, Stamminger & Drettakis, "Perspective Shadow
+//   Stamminger and Drettakis 2002, "Perspective Shadow
 //   Maps": Sect. 3 (lights in post-perspective space: a point light in front
 //   of the viewer stays a point light, one behind becomes an inverted point
 //   light, one on the camera plane a directional light; a directional light

@@ -42,7 +42,7 @@ bool cube_passes(Frame& f) {
   const glm::vec3 L(f.light.position);
   const float d = glm::length(glm::vec3(s.bounds) - L), r = s.bounds.w;
   const float near_plane = std::max(r * 1e-3f, (d - r) * 0.5f), far_plane = (d + r) * 1.01f;
-  // The six faces, GL order +X -X +Y -Y +Z -Z (geom/focus.h, seed 003).
+  // The six faces, GL order +X -X +Y -Y +Z -Z (geom/focus.h, Gerasimov 2004).
   const double position[3] = {L.x, L.y, L.z};
   double faces[6][16];
   geom::focus_cube_faces(position, near_plane, far_plane, faces);

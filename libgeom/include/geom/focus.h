@@ -1,6 +1,6 @@
 // geom/focus.h: focus regions and light matrices for shadow maps, per frame.
 //
-// What it computes (seed 002_147d3d07b97c563e.txt, Stamminger & Drettakis,
+// What it computes (Stamminger and Drettakis 2002,
 // "Perspective Shadow Maps"):
 //   - the focus body H = conv(R u {l}) n S n L (Sect. 4.1), where R = V n S n L
 //     is the receiver region: the part of the view frustum V that lies in the
@@ -22,8 +22,8 @@
 //     Space Perspective Shadow Maps", whose warp fades smoothly to none as the
 //     light direction approaches the view direction), and uniform (the same H,
 //     no warp: the ordinary focused shadow map);
-//   - the six 90-degree cube-face matrices of a point light (seed
-//     003_478065b2696af70d.txt, Gerasimov, "Omnidirectional Shadow Mapping").
+//   - the six 90-degree cube-face matrices of a point light (Gerasimov
+//     2004, "Omnidirectional Shadow Mapping").
 //
 // Conventions (all of them, for an engine):
 //   - World space is right-handed; units are the caller's.
@@ -238,7 +238,7 @@ const char* focus_method_name(FocusMethod method);        // "psm", "lispsm", "u
 const char* light_kind_name(LightKind kind);              // "point", "inverted_point", "directional"
 const char* focus_fallback_name(FocusFallback fallback);  // "none", "near_limited", ...
 
-// Omnidirectional shadows (seed 003): the six view-projection matrices of a
+// Omnidirectional shadows (Gerasimov 2004): the six view-projection matrices of a
 // cube map around `position`, 90-degree field of view, aspect 1, depth range
 // [near_dist, far_dist] (0 < near < far). Face order and orientation are
 // OpenGL's cube-map faces: +X, -X, +Y, -Y, +Z, -Z (GL_TEXTURE_CUBE_MAP_POSITIVE_X
