@@ -283,8 +283,10 @@ int check_laws(const FrameSetup& s, const FocusResult& r, std::mt19937& rng, con
   return checked;
 }
 
+// The warp's own laws: min_warp_gain 0 keeps the warp on every frame.
 FocusResult run(const FrameSetup& s, FocusMethod method, FocusOptions opt = {}) {
   opt.method = method;
+  opt.min_warp_gain = 0;
   FocusResult r;
   compute_focus(s.camera(), s.light, s.box, opt, r);
   return r;
@@ -590,7 +592,8 @@ TEST(Focus, CastersAndReceiversTighten) {
   tight.receivers = &receivers;
   for (FocusMethod m : kMethods) {
     FocusResult a = run(s, m, plain), b = run(s, m, tight);
-    ASSERT_EQ(FocusFallback::None, b.fallback) << b.reason;
+    // No fallback but, at times, the unwarped map where the warp would not help.
+    ASSERT_TRUE(b.fallback == FocusFallback::None || b.fallback == FocusFallback::WarpNoGain) << b.reason;
     for (size_t i = 0; i < b.vertex_count(); ++i) {
       P3 p{b.vertices[3 * i], b.vertices[3 * i + 1], b.vertices[3 * i + 2]};
       EXPECT_GE(p.x, -2 - 1e-6);
@@ -672,7 +675,7 @@ TEST(FocusCommand, PrintsJsonAndRejectsBadInput) {
   std::ofstream(good) << R"({"camera": {"eye": [0,2,5], "target": [0,1.5,-5], "up": [0,1,0],
     "fovy_degrees": 60, "aspect": 1.5, "near": 0.1, "far": 100},
     "light": {"type": "spot", "position": [0,10,-5], "direction": [0,-1,0], "spot_angle_degrees": 40},
-    "scene_bounds": {"min": [-10,0,-20], "max": [10,5,0]}, "method": "lispsm"})";
+    "scene_bounds": {"min": [-10,0,-20], "max": [10,5,0]}, "method": "lispsm", "min_warp_gain": 0})";
   ASSERT_EQ(0, std::system((geombake + " focus " + good + " > " + out + " 2>&1").c_str()));
   std::ifstream in(out);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -41,6 +41,7 @@ bool render_grid(render::State& state, const geom::Scene& scene, const std::vect
       if (!render::render(state, view, light, s, panel, warm, error) ||
           !render::render(state, view, light, s, panel, f.times, error))
         return error = std::string(render::technique_name(f.technique)) + ": " + error, false;
+      f.projection = render::drawn_projection(state);
       if (with_error && !measure_error(state, ref, view, light, s, f.error, nullptr, error)) return false;
       for (int y = 0; y < view.height; ++y)
         std::copy_n(panel.pixels.data() + size_t(y) * view.width * 3, size_t(view.width) * 3,

@@ -47,6 +47,7 @@ std::vector<std::string> hud_lines(const Figures& f, bool passes) {
   std::vector<std::string> lines;
   std::string head = render::technique_name(f.technique);
   if (render::technique_has_map(f.technique)) head += " " + std::to_string(f.map_size);
+  if (!f.projection.empty()) head += " | " + f.projection;
   lines.push_back(head);
   if (!f.message.empty()) {
     lines.push_back(f.message);

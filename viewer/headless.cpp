@@ -59,9 +59,10 @@ int run_headless(Options& o, Session& s) {
       if (o.frames > 1) {
         std::printf("%s frame %d:", render::technique_name(t), frame);
         for (auto& pt : times) std::printf(" %s %.3f ms", pt.pass.c_str(), pt.ms);
-        std::printf(" total %.3f ms\n", total_ms(times));
+        std::printf(" total %.3f ms; drew %s\n", total_ms(times), render::drawn_projection(*s.state).c_str());
       }
       f.times = times;
+      f.projection = render::drawn_projection(*s.state);
     }
     if (measure && !measure_error(*s.state, ref, o.view, o.light, settings, f.error, nullptr, error))
       return fail(o.file + ": " + render::technique_name(t) + ": " + error);

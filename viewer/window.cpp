@@ -194,6 +194,7 @@ int run_window(Options& o, Session& s) {
       }
       m.figures.technique = m.settings.technique, m.figures.map_size = m.settings.shadow_map_size;
       m.figures.gpu_timers = gpu, m.figures.times = times, m.figures.message.clear();
+      m.figures.projection = render::drawn_projection(*s.state);
       if (m.measure) {
         m.measure = false;
         std::vector<uint8_t> overlay;

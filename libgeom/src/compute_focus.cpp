@@ -1,6 +1,6 @@
 // compute_focus.cpp: the per-frame computation of geom/focus.h: the light's
-// kind in the camera's post-perspective space (seed 002_147d3d07b97c563e.txt,
-// Sect. 3), R = V n S n L and H = conv(R u {l}) n S n L (Sect. 4.1) by the
+// kind in the camera's post-perspective space (Stamminger and
+// Drettakis 2002, Sect. 3), R = V n S n L and H = conv(R u {l}) n S n L (Sect. 4.1) by the
 // steps of focus_body.h and focus_frame.h, H's faces, and the matrix of the
 // requested method (light_matrix.cpp), with the fallbacks geom/focus.h lists.
 #include <algorithm>
@@ -28,6 +28,8 @@ const char* focus_fallback_name(FocusFallback f) {
       return "none";
     case FocusFallback::NearLimited:
       return "near_limited";
+    case FocusFallback::WarpNoGain:
+      return "warp_no_gain";
     case FocusFallback::ParallelLight:
       return "parallel_light";
     case FocusFallback::LightTooClose:

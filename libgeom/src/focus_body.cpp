@@ -1,5 +1,5 @@
 // focus_body.cpp: the focus body H = conv(R u {l}) n S n L of perspective
-// shadow maps (seed 002_147d3d07b97c563e.txt, Stamminger & Drettakis, Sect. 4.1:
+// shadow maps (Stamminger and Drettakis 2002, Sect. 4.1:
 // "we use the computational geometry library CGAL to perform these geometric
 // computations"). R = V n S n L is the receiver region (geom/focus.h).
 //

@@ -3,7 +3,7 @@
 // bounds S (and the casters' hull), the light frustum L, the view frustum V
 // cut at S's far side, and L's near plane, placed with the receivers.
 //
-// References: seed 002_147d3d07b97c563e.txt, Stamminger & Drettakis,
+// References: Stamminger and Drettakis 2002,
 // "Perspective Shadow Maps", Sect. 4.1 (H = conv(V u {l}) n S n L, here with
 // the receiver region R = V n S n L in V's place).
 #include "focus_frame.h"
@@ -73,8 +73,10 @@ bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const Fo
     return false;
   }
   if (!(opt.psm_min_near_ratio >= 0 && opt.psm_min_near_ratio < 1) || !(opt.lispsm_n_scale > 0) ||
+      !(opt.min_warp_gain >= 0 && opt.min_warp_gain <= 1) ||
       !std::isfinite(opt.lispsm_n_scale) || int(opt.method) > 2) {
-    out.reason = "the options are out of range (psm_min_near_ratio in [0, 1), lispsm_n_scale > 0)";
+    out.reason =
+        "the options are out of range (psm_min_near_ratio in [0, 1), lispsm_n_scale > 0, min_warp_gain in [0, 1])";
     return false;
   }
   if (opt.receivers && (!finite3(opt.receivers->min) || !finite3(opt.receivers->max))) {

@@ -3,7 +3,7 @@
 // LiSPSM / uniform matrices of the focus body H (focus_frame.h).
 //
 // References:
-//   seed 002_147d3d07b97c563e.txt, Stamminger & Drettakis, "Perspective Shadow
+//   Stamminger and Drettakis 2002, "Perspective Shadow
 //   Maps": Sect. 3 (lights in post-perspective space: a point light in front
 //   of the viewer stays a point light, one behind becomes an inverted point
 //   light, one on the camera plane a directional light; a directional light
@@ -265,6 +265,40 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
   return fit(chain, fr.h_verts, false, result);
 }
 
+// A warp's gain over the unwarped map: the least, over sample points of R
+// (its vertices, its centre, and the points halfway between them), of the
+// ratio of the two maps' resolutions there, each measured as the length in
+// the map of a small step along the camera's right, up and view directions
+// (summed). A warp trades resolution far away for resolution near the eye
+// (Stamminger and Drettakis 2002, Sect. 3; Wimmer et al. 2004, Sect. 4);
+// where it leaves some receiver much more coarsely resolved than the
+// unwarped map does, it is worse than no warp for that frame.
+static double warp_gain(const Frame& fr, const M4& warped, const M4& uniform) {
+  V4 r4 = mul(fr.view_inv, 1, 0, 0, 0), u4 = mul(fr.view_inv, 0, 1, 0, 0);
+  const V3 dirs[3] = {normalize(V3(r4.x, r4.y, r4.z)), normalize(V3(u4.x, u4.y, u4.z)), fr.view_dir};
+  auto length_at = [&](const M4& m, V3 p, double step) {
+    V4 a = mul_point(m, p);
+    if (!(a.w > 0)) return 0.0;
+    double sum = 0;
+    for (V3 d : dirs) {
+      V4 b = mul_point(m, p + d * step);
+      if (!(b.w > 0)) return 0.0;
+      sum += std::hypot(b.x / b.w - a.x / a.w, b.y / b.w - a.y / a.w);
+    }
+    return sum;
+  };
+  V3 c = box_centre(fr.r_verts);
+  double gain = HUGE_VAL;
+  auto at = [&](V3 p) {
+    double step = 1e-4 * std::fmax(depth_of(fr, p), fr.cam_near);
+    double w = length_at(warped, p, step), u = length_at(uniform, p, step);
+    if (u > 0) gain = std::fmin(gain, w / u);
+  };
+  at(c);
+  for (V3 p : fr.r_verts) at(p), at((p + c) * 0.5);
+  return gain;
+}
+
 bool method_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
   bool done = false;
   if (opt.method != FocusMethod::Uniform && !fr.perspective) {
@@ -276,6 +310,15 @@ bool method_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
   } else if (opt.method == FocusMethod::Lispsm) {
     done = lispsm_matrix(fr, opt, out, result);
     if (done) out.method = FocusMethod::Lispsm;
+  }
+  M4 uniform;
+  if (done && opt.min_warp_gain > 0 && uniform_matrix(fr, uniform) &&
+      warp_gain(fr, result, uniform) < opt.min_warp_gain) {
+    set_fallback(out, FocusFallback::WarpNoGain,
+                 "the warp would resolve some visible receiver more coarsely than the unwarped map: uniform used");
+    out.method = FocusMethod::Uniform;
+    result = uniform;
+    return true;
   }
   if (!done) {
     out.method = FocusMethod::Uniform;

@@ -42,7 +42,7 @@ bool cube_passes(Frame& f) {
   const glm::vec3 L(f.light.position);
   const float d = glm::length(glm::vec3(s.bounds) - L), r = s.bounds.w;
   const float near_plane = std::max(r * 1e-3f, (d - r) * 0.5f), far_plane = (d + r) * 1.01f;
-  // The six faces, GL order +X -X +Y -Y +Z -Z (geom/focus.h, seed 003).
+  // The six faces, GL order +X -X +Y -Y +Z -Z (geom/focus.h, Gerasimov 2004).
   const double position[3] = {L.x, L.y, L.z};
   double faces[6][16];
   geom::focus_cube_faces(position, near_plane, far_plane, faces);
@@ -53,7 +53,7 @@ bool cube_passes(Frame& f) {
     set(p, name.c_str(), at(glm::make_mat4(faces[i]), s.origin));
   }
   set(p, "u_light_position", glm::vec3(glm::dvec3(L) - s.origin));
-  f.timer.begin(f.focused ? "cube map (focus: point light among the receivers)" : "cube map");
+  f.timer.begin("cube map");
   glBindFramebuffer(GL_FRAMEBUFFER, s.cube.fbo);
   glViewport(0, 0, n, n);
   const float far_value = 3.0e38f;
@@ -64,6 +64,7 @@ bool cube_passes(Frame& f) {
   f.timer.end();
   f.shadow_texture = s.cube.color;
   f.lookup = "lookup_cube.frag";
+  f.projection = "cube map";
   return true;
 }
 

@@ -1,20 +1,19 @@
-// focused.cpp: the focused shadow maps psm (seed 002), lispsm (Wimmer et al.
-// 2004) and uniform: the light matrix of geom/focus.h computed per frame for
-// the map's x and y, and a linear light depth with its own bias
-// (shaders/light_depth.frag, depth_linear.frag, lookup_focused.frag). A point
-// light among the receivers cannot be covered by one map: an engine renders a
-// cube map for it instead (FocusResult::needs_cube_map), and so does this.
+// focused.cpp: the focused shadow maps psm (Stamminger and Drettakis 2002),
+// lispsm (Wimmer et al. 2004) and uniform: the light matrix of geom/focus.h
+// computed per frame for the map's x and y, and a linear light depth with its
+// own bias (shaders/light_depth.frag, depth_linear.frag, lookup_focused.frag).
+// A point light among the receivers, or one whose receivers need a cone over
+// kMaxConeDeg, cannot be covered well by one map: geom/focus.h fits six faces
+// to it, each focused by the method as a spot light whose frustum is the
+// face's pyramid (Stamminger and Drettakis 2002, Sect. 1: the ideas carry
+// over to an omnidirectional light as several maps); they are drawn into a
+// 2D array and looked up by shaders/lookup_focused_faces.frag.
+#include <cstdio>
+
 #include "state.h"
 
 namespace render {
 namespace {
-
-glm::mat4 to_mat4(const double m[16]) {
-  glm::mat4 out;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) out[c][r] = float(m[c * 4 + r]);
-  return out;
-}
 
 geom::FocusMethod method_of(Technique t) {
   return t == Technique::Psm      ? geom::FocusMethod::Psm
@@ -22,10 +21,42 @@ geom::FocusMethod method_of(Technique t) {
                                   : geom::FocusMethod::Uniform;
 }
 
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+// "psm near=0.8", "lispsm n=3.2", "uniform", "uniform (fallback: parallel_light)".
+std::string describe(geom::FocusMethod requested, geom::FocusMethod used, geom::FocusFallback fallback, double psm_near,
+                     double lispsm_n) {
+  std::string out = geom::focus_method_name(used);
+  if (used == geom::FocusMethod::Psm) out += " near=" + number(psm_near);
+  if (used == geom::FocusMethod::Lispsm) out += " n=" + number(lispsm_n);
+  if (fallback != geom::FocusFallback::None && fallback != geom::FocusFallback::LightInsideView)
+    out += std::string(used != requested ? " (fallback: " : " (") + geom::focus_fallback_name(fallback) + ")";
+  return out;
+}
+
+// "6 faces: lispsm x4 + uniform x2 (1 empty)" (no comma: a CSV field as it is).
+std::string describe_faces(const geom::FocusResult& r) {
+  int count[3] = {0, 0, 0}, empty = 0;
+  for (const geom::FocusFace& face : r.cube_faces) face.empty ? ++empty : ++count[int(face.method)];
+  std::string out = "6 faces:";
+  const char* sep = " ";
+  for (int m = 0; m < 3; ++m)
+    if (count[m]) {
+      out += sep + std::string(geom::focus_method_name(geom::FocusMethod(m))) + " x" + std::to_string(count[m]);
+      sep = " + ";
+    }
+  if (empty) out += " (" + std::to_string(empty) + " empty)";
+  return out;
+}
+
 }  // namespace
 
 geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,
-                        geom::FocusMethod method, bool faces) {
+                        geom::FocusMethod method, bool faces, double cube_cone) {
   const double eye[3] = {view.eye.x, view.eye.y, view.eye.z}, target[3] = {view.target.x, view.target.y, view.target.z},
                up[3] = {view.up.x, view.up.y, view.up.z};
   const geom::CameraMatrices camera =
@@ -46,6 +77,7 @@ geom::FocusResult focus(const State& s, const View& view, float aspect, const Fr
   geom::FocusOptions options;
   options.method = method;
   options.faces = faces;  // H's faces only for the inspection wireframe
+  options.cube_cone_degrees = cube_cone;
   geom::FocusResult result;
   geom::compute_focus(camera, l, box, options, result);
   return result;
@@ -53,17 +85,27 @@ geom::FocusResult focus(const State& s, const View& view, float aspect, const Fr
 
 bool focused_passes(Frame& f) {
   f.focused = true;
+  const geom::FocusMethod method = method_of(f.t);
   f.timer.begin("focus (CPU)");
-  const geom::FocusResult r = focus(f.s, f.view, f.aspect, f.light, method_of(f.t));
+  const geom::FocusResult r = focus(f.s, f.view, f.aspect, f.light, method, false, kMaxConeDeg);
   f.timer.end();
-  if (r.needs_cube_map) {
-    f.t = Technique::Cube;  // the pass is then named "cube map (...)"
-    return cube_passes(f);
+  if (r.cube) {
+    bool first = true;
+    for (int i = 0; i < 6; ++i) {
+      const geom::FocusFace& face = r.cube_faces[i];
+      f.face_clip[i] = face.empty ? glm::mat4(0.0f) : to_mat4(face.focused);
+      if (!face.empty && first) f.light_frame.proj = f.face_clip[i], f.light_frame.view = glm::mat4(1), first = false;
+    }
+    if (!depth_faces(f, 3.0f, true, true)) return false;  // bilinear lookup: 2 texels
+    f.lookup = "lookup_focused_faces.frag";
+    f.projection = describe_faces(r);
+    return true;
   }
   f.light_frame.proj = to_mat4(r.matrix), f.light_frame.view = glm::mat4(1);
   if (!depth_map_pass(f, f.light_frame.clip(), 3.0f, true)) return false;  // bilinear lookup: 2 texels
   finish_map(f);
   f.lookup = "lookup_focused.frag";
+  f.projection = describe(method, r.method, r.fallback, r.psm_near, r.lispsm_n);
   return true;
 }
 

@@ -35,8 +35,9 @@ std::string missing_buffers(const State& s, const TechniqueRow& row, const Frame
 GLuint shading_program(Frame& f) {
   State& s = f.s;
   std::vector<std::string> files = {"scene.vert", "shade.frag", f.lookup};
-  if (f.lookup == "lookup_focused.frag") files.push_back("light_depth.frag");  // its light_depth()
-  if (f.faces) files.push_back("lookup_faces.frag");                           // esm, edsm: face_clip()
+  const bool linear_depth = f.lookup.rfind("lookup_focused", 0) == 0;  // the focused maps' lookups
+  if (linear_depth) files.push_back("light_depth.frag");                 // their light_depth()
+  if (f.faces) files.push_back("lookup_faces.frag");                     // 1 or 6 faces: face_clip()
   if (!f.lookup_extra.empty()) files.push_back(f.lookup_extra);
   GLuint p = program(s.programs, files, f.error);
   if (!p) return 0;
@@ -51,7 +52,7 @@ GLuint shading_program(Frame& f) {
   set(p, "u_output", f.fs.output == Output::Mask ? 1 : f.fs.output == Output::Fraction ? 2 : 0);
   set(p, "u_ambient_only", 0);
   set(p, "u_light_matrix", at(glm::dmat4(f.light_frame.clip()), s.origin));
-  if (f.lookup == "lookup_focused.frag") set(p, "u_depth_range", light_depth_range(s, light));
+  if (linear_depth) set(p, "u_depth_range", light_depth_range(s, light));
   set(p, "u_shadow_map", 0);
   set(p, "u_distance_map", 1);
   set(p, "u_edge_map", 1);
@@ -80,6 +81,7 @@ bool draw_frame(State& s, const View& view, const FrameLight& light, const Frame
   f.view_proj =
       glm::dmat4(camera_proj) * glm::lookAt(glm::dvec3(view.eye), glm::dvec3(view.target), glm::dvec3(view.up));
   reset_state();
+  s.projection.clear();
   const TechniqueRow& row = technique_row(fs.technique);
   if (std::string missing = missing_buffers(s, row, fs); !missing.empty()) return error = missing, false;
   if ((row.needs_esm || row.needs_volume || row.needs_adjacency || fs.inspect) && !s.casters_built) {
@@ -88,7 +90,9 @@ bool draw_frame(State& s, const View& view, const FrameLight& light, const Frame
     timer.end();
     if (!ok) return false;
   }
-  if (row.light_passes && !row.light_passes(f)) return false;  // may change f.t (a focused map drawn as cube)
+  if (row.light_passes && !row.light_passes(f)) return false;
+  // What was drawn: the passes name their projection; the other map techniques draw the scene-wide frustum.
+  s.projection = !f.projection.empty() ? f.projection : row.has_map ? "scene frustum" : "shadow volumes";
 
   const GLuint p = shading_program(f);
   if (!p) return false;

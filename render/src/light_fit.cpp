@@ -1,18 +1,18 @@
-// light_fit.cpp: the light frustum of the single-map techniques (ssm, pcf, esm,
-// edsm), fitted to what the camera sees (issue 18): geom/focus.h's body H
-// (every point that can cast a shadow onto a visible receiver) and its uniform
-// focused matrix (no warp), whose depth range starts at H's nearest point. A
-// point light whose receivers need more than one frustum can cover well (H
-// wider than kMaxConeDeg from the light, or receivers behind the light:
-// FocusResult::needs_cube_map) is drawn as cube faces by the caller.
+// light_fit.cpp: the light frames of the single-map techniques (ssm, pcf,
+// esm, edsm, sssm, esm-soft), fitted to what the camera sees: geom/focus.h's
+// focus body H (every point that can cast a shadow onto a visible receiver)
+// and its uniform focused matrix (no warp). A point light whose receivers
+// need more than one frustum can cover well (H wider than kMaxConeDeg from
+// the light, or receivers beside and behind it: FocusResult::needs_cube_map)
+// gets six 90-degree faces instead, each with the near and far planes that
+// geom/focus.h fits to its part of H (Gerasimov 2004, Sect. 12.3.3), widened
+// by a guard band of a few texels so that filter taps and edge quads near a
+// seam stay inside the face (silhouette_faces.cpp).
 #include <cmath>
 
 #include "state.h"
 
 namespace render {
-namespace {
-
-constexpr double kMaxConeDeg = 120;  // full angle of the widest single frustum worth drawing
 
 glm::mat4 to_mat4(const double m[16]) {
   glm::mat4 out;
@@ -21,29 +21,43 @@ glm::mat4 to_mat4(const double m[16]) {
   return out;
 }
 
-}  // namespace
-
-bool fitted_light_frame(Frame& f, LightFrame& out) {
+int fit_light_frames(Frame& f, float guard) {
   f.timer.begin("focus (CPU)");
-  const geom::FocusResult r = focus(f.s, f.view, f.aspect, f.light, geom::FocusMethod::Uniform);
+  const geom::FocusResult r = focus(f.s, f.view, f.aspect, f.light, geom::FocusMethod::Uniform, false, kMaxConeDeg);
   f.timer.end();
   if (r.fallback == geom::FocusFallback::InvalidInput) {
-    out = light_frame(f.s, f.light);  // the scene-wide frustum
-    return true;
+    f.light_frame = light_frame(f.s, f.light);  // the scene-wide frustum
+    f.projection = "scene frustum (focus: invalid input)";
+    return 1;
   }
-  if (r.needs_cube_map) return false;
-  if (f.light.position.w != 0 && !f.light.spot) {  // the cone H needs from the light
-    const glm::dvec3 L(glm::vec3(f.light.position)), axis(r.light_axis[0], r.light_axis[1], r.light_axis[2]);
-    double min_cos = 1;
-    for (size_t i = 0; i + 2 < r.vertices.size(); i += 3) {
-      const glm::dvec3 d = glm::dvec3(r.vertices[i], r.vertices[i + 1], r.vertices[i + 2]) - L;
-      const double len = glm::length(d);
-      if (len > 1e-9 * (1 + glm::length(L))) min_cos = std::min(min_cos, glm::dot(d, axis) / len);
+  if (!r.cube) {
+    f.light_frame.proj = to_mat4(r.matrix), f.light_frame.view = glm::mat4(1);
+    f.projection = "fitted frustum";
+    return 1;
+  }
+  const float widen = 1.0f / (1.0f + 2.0f * guard / float(f.n));  // tan(fov / 2) = 1 + 2 guard / N
+  int empty = 0;
+  for (int i = 0; i < 6; ++i) {
+    const geom::FocusFace& face = r.cube_faces[i];
+    if (face.empty) {
+      f.face_clip[i] = glm::mat4(0.0f);  // nothing to draw; a lookup there (none is) finds w = 0: lit
+      ++empty;
+      continue;
     }
-    if (min_cos < std::cos(kMaxConeDeg * 0.5 * M_PI / 180)) return false;
+    // The fitted depth range with room on both sides: a receiver on the far
+    // plane (a floor under a light looking down) would meet z/w's coarsest
+    // steps there, where its depth and the map's round apart (acne).
+    double faces[6][16];
+    const double position[3] = {f.light.position.x, f.light.position.y, f.light.position.z};
+    geom::focus_cube_faces(position, face.near * 0.5, face.far * 2, faces);
+    glm::mat4 m = to_mat4(faces[i]);
+    for (int c = 0; c < 4; ++c) m[c][0] *= widen, m[c][1] *= widen;
+    f.face_clip[i] = m;
   }
-  out.proj = to_mat4(r.matrix), out.view = glm::mat4(1);
-  return true;
+  for (int i = 5; i >= 0; --i)  // the soft techniques' reach reads a face's scale: a non-empty one
+    if (!r.cube_faces[i].empty) f.light_frame.proj = f.face_clip[i], f.light_frame.view = glm::mat4(1);
+  f.projection = empty ? "6 faces (" + std::to_string(empty) + " empty)" : "6 faces";
+  return 6;
 }
 
 float projection_scale(const glm::mat4& clip) {

@@ -103,7 +103,7 @@ glm::vec2 light_depth_range(const State& s, const FrameLight& light) {
 // depth) the map stores the linear light depth of shaders/light_depth.frag with
 // the bias computed in it (depth_linear.frag); otherwise the matrix's own depth
 // with glPolygonOffset's bias.
-bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool linear_light) {
+bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool linear_light, const char* pass) {
   State& s = f.s;
   const int n = f.n;
   ensure_shadow_map(s, n);
@@ -117,7 +117,7 @@ bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool lin
     set(p, "u_bias_slope", slope);
     set(p, "u_bias_constant", 1.0f / 65536.0f);  // about 3e-5 of the scene's diameter
   }
-  f.timer.begin("depth map");
+  f.timer.begin(pass);
   glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
   glViewport(0, 0, n, n);
   glClear(GL_DEPTH_BUFFER_BIT);
@@ -176,13 +176,15 @@ GLuint depth_sampler(State& s) {
 
 // ssm: one depth map, nearest lookup; pcf: the same with bilinear 2x2 taps.
 // The light frustum is fitted to what the camera sees (light_fit.cpp); a point
-// light that needs more than one frustum is drawn as the cube technique.
+// light that needs more than one frustum gets six faces, each its own depth
+// map (shaders/lookup_shadow_faces.frag), and the frame says so ("6 faces").
 bool shadow_map_passes(Frame& f) {
-  if (!fitted_light_frame(f, f.light_frame)) {
-    f.t = Technique::Cube;  // the pass is then named "cube map (...)"
-    return cube_passes(f);
-  }
   const float slope = f.t == Technique::Pcf ? 3.5f : 1.5f;  // pcf: taps 1 texel away
+  if (fit_light_frames(f, face_guard()) == 6) {
+    if (!depth_faces(f, slope, false, f.t == Technique::Pcf)) return false;
+    f.lookup = "lookup_shadow_faces.frag";
+    return true;
+  }
   if (!depth_map_pass(f, f.light_frame.clip(), slope, false)) return false;
   finish_map(f);
   f.lookup = "lookup_shadow_map.frag";

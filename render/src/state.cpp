@@ -192,6 +192,7 @@ bool render_to_window(State& s, const geom::Camera& camera, const geom::Light& l
   return true;
 }
 
+std::string drawn_projection(const State& s) { return s.projection; }
 std::string renderer_name(State& s) { return s.renderer; }
 std::string timing_kind(State& s) {
   return s.gpu_timers ? "GPU timer queries" : "wall time around glFinish (software renderer)";

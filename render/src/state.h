@@ -70,6 +70,7 @@ struct State {
   std::vector<Caster> casters;
   // A baked file's casters come with it; the buffers it lacks are named here.
   bool baked = false, baked_esm = true, baked_volume = true, baked_adjacency = true;
+  std::string projection;  // what the last frame's light passes drew (drawn_projection)
 };
 
 // The frame's light in the form the passes use (floats, as the shaders take them).
@@ -103,7 +104,7 @@ struct Frame {
   const View& view;
   const FrameLight& light;
   const FrameSettings& fs;
-  Technique t;  // the technique drawn: a focused map may fall back to cube
+  Technique t;  // the technique drawn
   int n = 0;    // shadow-map size
   int w = 0, h = 0;
   float aspect = 1;
@@ -116,8 +117,11 @@ struct Frame {
   GLuint shadow_texture = 0, second_texture = 0;
   LightFrame light_frame;  // u_light_matrix
   bool focused = false;    // psm, lispsm, uniform (even when drawn as cube)
-  int faces = 0;           // esm, edsm: 1 fitted frustum or 6 cube faces (shaders/lookup_faces.frag)
-  glm::mat4 face_clip[6];  // their light clip matrices (world)
+  int faces = 0;           // 1 fitted frustum or 6 faces (shaders/lookup_faces.frag); 0: u_light_matrix alone
+  glm::mat4 face_clip[6];  // their light clip matrices (world); an empty face's is zero
+  // The projection drawn, as render/render.h's drawn_projection reports it
+  // ("fitted frustum", "6 faces", "lispsm n=2.1", "uniform (fallback: ...)").
+  std::string projection;
 };
 
 // The technique table (techniques.cpp, from render/techniques.def): one row per Technique, in enum order.
@@ -156,7 +160,8 @@ float soft_reach(const Frame& f, float projection);
 LightFrame light_frame(const State& s, const FrameLight& light);
 // The depth map from the light with slope-scaled bias into s.shadow_map
 // (`linear_light`: the linear light depth of the focused maps).
-bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool linear_light);
+bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool linear_light,
+                    const char* pass = "depth map");  // the timer's name of the pass
 // Sets the depth map's filter for the technique and makes it the shadow texture.
 void finish_map(Frame& f);
 void ensure_edge_map(State& s, int n, GLenum format);
@@ -166,21 +171,30 @@ glm::vec4 local_light(const State& s, const FrameLight& light);
 // u_depth_range of shaders/light_depth.frag.
 glm::vec2 light_depth_range(const State& s, const FrameLight& light);
 
-// light_fit.cpp: the single-map techniques' light frustum fitted to what the
-// camera sees (the uniform focused matrix of H). False when the light needs
-// cube faces (a point light among or around the receivers).
-bool fitted_light_frame(Frame& f, LightFrame& out);
+// light_fit.cpp: the single-map techniques' light frames fitted to what the
+// camera sees: 1 (f.light_frame: the uniform focused matrix of H) or 6 (a
+// point light among the receivers or needing a cone over kMaxConeDeg:
+// f.face_clip, the 90-degree faces with their fitted near and far, widened
+// by `guard` texels; an empty face's matrix is zero). Sets f.projection.
+constexpr double kMaxConeDeg = 120;  // full angle of the widest single frustum worth drawing
+int fit_light_frames(Frame& f, float guard);
+glm::mat4 to_mat4(const double m[16]);  // geom/focus.h's column-major doubles
 // silhouette_faces.cpp: esm and edsm drawn with the fitted frustum or as six
-// cube faces: `draw_face` draws the depth map and the edge map of one light
+// faces: `draw_face` draws the depth map and the edge map of one light
 // clip matrix into s.shadow_map / s.edge_map; the faces are gathered into
 // s.face_depth / s.face_edges (2D arrays), which become the frame's textures.
 bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& light_clip), GLenum edge_format);
+// The depth maps of the six faces f.face_clip (zero: skipped) into the layers
+// of s.face_depth, which becomes the shadow texture (bilinear or nearest).
+bool depth_faces(Frame& f, float slope, bool linear_light, bool bilinear);
+float face_guard();  // the guard band of the 90-degree faces, in texels
 // Clip x (or y, the smaller) per unit of length at w = 1 of a light's clip matrix.
 float projection_scale(const glm::mat4& clip);
 
-// focused.cpp: the focused light matrix of psm / lispsm / uniform, and H.
+// focused.cpp: the focused light matrix of psm / lispsm / uniform, and H
+// (`faces`: H's polygons; `cube_cone`: geom/focus.h FocusOptions::cube_cone_degrees).
 geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,
-                        geom::FocusMethod method, bool faces = false);
+                        geom::FocusMethod method, bool faces = false, double cube_cone = 0);
 
 // casters.cpp
 bool build_casters(State& s, std::string& error);  // bakes and uploads every caster, once

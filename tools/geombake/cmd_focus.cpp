@@ -7,7 +7,9 @@
 //              "spot_angle_degrees": 30, "range": 50},   (only the keys the type needs)
 //    "scene_bounds": {"min": [..], "max": [..]},
 //    "receiver_bounds": {"min": [..], "max": [..]},      (optional)
-//    "method": "psm" | "lispsm" | "uniform"}             (optional, default psm)
+//    "method": "psm" | "lispsm" | "uniform",             (optional, default psm)
+//    "cube_cone_degrees": 120,                           (optional: six faces for a point light wider than this)
+//    "min_warp_gain": 0.75}                              (optional: FocusOptions::min_warp_gain)
 // Bad JSON, a missing key or an invalid frame: `Error: FILE: ...`, exit 1.
 #include <cmath>
 #include <cstdio>
@@ -130,6 +132,16 @@ int run_focus(const std::vector<std::string>& argv) {
     if (frame.contains("receiver_bounds")) {
       receivers = box(frame["receiver_bounds"], "receiver_bounds");
       options.receivers = &receivers;
+    }
+    if (frame.contains("min_warp_gain")) {
+      options.min_warp_gain = number(frame, "frame", "min_warp_gain");
+      if (!(options.min_warp_gain >= 0 && options.min_warp_gain <= 1))
+        throw BadFrame("min_warp_gain: must lie in [0, 1]");
+    }
+    if (frame.contains("cube_cone_degrees")) {
+      options.cube_cone_degrees = number(frame, "frame", "cube_cone_degrees");
+      if (!(options.cube_cone_degrees >= 0 && options.cube_cone_degrees < 360))
+        throw BadFrame("cube_cone_degrees: must lie in [0, 360)");
     }
     if (frame.contains("method")) {
       const Json& m = frame["method"];

@@ -68,6 +68,7 @@ namespace {
 
 struct Row {
   std::string scene, technique, time_kind;
+  std::string projection;  // what was drawn (render::drawn_projection)
   int size = 0;
   double time_ms = 0, error_visible = 0, error_boundary = 0, error_cast = 0, error_self = 0, error_fraction = -1;
   size_t visible = 0, boundary = 0, cast = 0, self = 0, triangles = 0;
@@ -527,8 +528,8 @@ int main(int argc, char** argv) {
     std::printf("\n%s: %s; %zu triangles; %dx%d; %s\n", name.c_str(), b.description.c_str(), b.scene.triangle_count(),
                 width, height, kind_text.c_str());
     if (area.ok) std::printf("  light radius %g (soft techniques; err frac: vs the area-light reference)\n", radius);
-    std::printf("  %-10s %6s %10s %10s %10s %10s %10s %10s\n", "technique", "map", "time ms", "err vis", "err bnd",
-                "err cast", "err self", "err frac");
+    std::printf("  %-10s %6s %10s %10s %10s %10s %10s %10s  %s\n", "technique", "map", "time ms", "err vis", "err bnd",
+                "err cast", "err self", "err frac", "projection drawn");
     for (render::Technique t : techniques) {
       if (render::technique_needs_point_light(t) && b.light.type == geom::LightType::Directional) {
         std::printf("  %-10s (needs a point or spot light: not measured)\n", render::technique_name(t));
@@ -562,14 +563,15 @@ int main(int argc, char** argv) {
         Row r;
         r.scene = name, r.technique = render::technique_name(t), r.size = size, r.time_kind = kind;
         r.time_ms = ms[ms.size() / 2], r.frames = n, r.triangles = b.scene.triangle_count();
+        r.projection = render::drawn_projection(*state);
         if (area.ok) r.error_fraction = geom::mean_fraction_error(mask.pixels, area);
         if (soft)  // the hard state of a fraction: lit from 0.5 on
           for (uint8_t& v : mask.pixels) v = v >= 128 ? 255 : 0;
         score(mask, ref, r);
         rows.push_back(r);
-        std::printf("  %-10s %6s %10.3f %10.5f %10.5f %10.5f %10.5f %10.5f\n", r.technique.c_str(),
+        std::printf("  %-10s %6s %10.3f %10.5f %10.5f %10.5f %10.5f %10.5f  %s\n", r.technique.c_str(),
                     size ? std::to_string(size).c_str() : "-", r.time_ms, r.error_visible, r.error_boundary,
-                    r.error_cast, r.error_self, r.error_fraction);
+                    r.error_cast, r.error_self, r.error_fraction, r.projection.c_str());
         std::fflush(stdout);
       }
     }
@@ -592,14 +594,14 @@ int main(int argc, char** argv) {
   if (!out_dir.empty()) {
     std::ostringstream csv;
     csv << "scene,technique,shadow_map_size,time_ms,time_kind,error_visible,error_boundary,visible_pixels,"
-           "boundary_pixels,frames,triangles,error_cast,error_self,cast_pixels,self_pixels,error_fraction\n";
+           "boundary_pixels,frames,triangles,error_cast,error_self,cast_pixels,self_pixels,error_fraction,projection\n";
     nlohmann::json results = nlohmann::json::array();
     for (const Row& r : rows) {
       csv << r.scene << "," << r.technique << "," << r.size << "," << fmt("%.4f", r.time_ms) << "," << r.time_kind
           << "," << fmt("%.6f", r.error_visible) << "," << fmt("%.6f", r.error_boundary) << "," << r.visible << ","
           << r.boundary << "," << r.frames << "," << r.triangles << "," << fmt("%.6f", r.error_cast) << ","
           << fmt("%.6f", r.error_self) << "," << r.cast << "," << r.self << "," << fmt("%.6f", r.error_fraction)
-          << "\n";
+          << "," << r.projection << "\n";  // render::drawn_projection: never a comma
       results.push_back({{"scene", r.scene},
                          {"technique", r.technique},
                          {"shadow_map_size", r.size},
@@ -615,7 +617,8 @@ int main(int argc, char** argv) {
                          {"boundary_pixels", r.boundary},
                          {"frames", r.frames},
                          {"triangles", r.triangles},
-                         {"error_fraction", r.error_fraction}});
+                         {"error_fraction", r.error_fraction},
+                         {"projection", r.projection}});
     }
     std::ostringstream bcsv;
     bcsv << "triangles,method,seconds,triangles_per_second,peak_bytes,speed_vs_meshopt,memory_vs_meshopt\n";

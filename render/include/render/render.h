@@ -10,7 +10,9 @@
 //   frame.cpp .............. draw_frame: state reset, casters, the technique's light passes, shading, inspection
 //   techniques.cpp ......... THE table of techniques, from include/render/techniques.def (one row each)
 //   shadow_map.cpp ......... ssm, pcf: the depth map with slope-scaled bias, shared by every map technique
-//   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame
+//   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame (or six faces)
+//   light_fit.cpp .......... the single-map techniques' frustum fitted to the view, or six fitted faces
+//   silhouette_faces.cpp ... the faces' 2D-array textures, and each face's passes
 //   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
 //   esm.cpp, edsm.cpp ...... extended shadow map (seed 000), edge distance shadow map (seed 001)
 //   edge_pass.h, .cpp ...... the edge pass the silhouette maps share (esm, edsm, sssm, the edge-distance soft ones)
@@ -155,6 +157,18 @@ bool render(State& state, const geom::Camera& camera, const geom::Light& light, 
 // Draws the frame into the default framebuffer (window mode), no read back.
 bool render_to_window(State& state, const geom::Camera& camera, const geom::Light& light, const FrameSettings& settings,
                       int width, int height, std::vector<PassTime>& times, std::string& error);
+
+// The light projection the last frame (render, render_to_window) drew, so
+// that figures never carry a name that is not what was drawn: "fitted
+// frustum" (ssm, pcf, esm, edsm: one map fitted to what the camera sees),
+// "6 faces" (a point light among the receivers or needing a cone over 120
+// degrees: six fitted 90-degree faces, "(k empty)" when some hold nothing),
+// "psm near=..", "lispsm n=..", "uniform", "uniform (fallback: <why>)" (the
+// focused maps: geom/focus.h's method, its warp parameter and fallback),
+// "6 faces: lispsm x4 + uniform x2" (a focused map's faces and the method each
+// used), "cube map", "scene frustum" (pcf-soft, edsm-soft), "shadow volumes".
+// Never a comma (geombench's CSV takes it as it is).
+std::string drawn_projection(const State& state);
 
 std::string renderer_name(State& state);  // GL_RENDERER
 std::string timing_kind(State& state);    // "GPU timer queries" or "wall time around glFinish (software)"

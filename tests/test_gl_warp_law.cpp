@@ -1,0 +1,110 @@
+// The warped focused maps (psm, lispsm) are never worse than the map they
+// warp (uniform, the same focus body without a warp), on random frames of
+// the bundled scene for each light type, at the same size, against the
+// ray-cast reference (geom/shadow_reference.h, as geombench scores):
+//
+//   error(psm), error(lispsm) <= 1.1 error(uniform) + 2 pixels
+//
+// on at least 95% of 200 frames per light type (point, spot, directional).
+// The frames: a camera anywhere around and above the scene, near or far,
+// looking at a random point of it; a sun anywhere above the horizon (grazing
+// ones too), a point light and a spot anywhere over the scene (beside the
+// camera, behind it, among the receivers). 160 x 120 images, 256-texel maps.
+#include "geom/import.h"
+#include "gl_fixtures.h"
+
+using namespace gltest;
+using render::Technique;
+
+namespace {
+
+constexpr int kFrames = 200;
+
+enum class Kind { Point, Spot, Directional };
+
+struct Tally {
+  int frames = 0, within[2] = {0, 0};  // psm, lispsm
+  int warped[2] = {0, 0};              // frames where it drew a warp (on at least one face)
+  double sum[3] = {0, 0, 0};           // uniform, psm, lispsm
+};
+
+Tally run_frames(render::State& state, const geom::Scene& scene, Kind kind, uint32_t seed) {
+  float b[4];
+  render::scene_bounds(state, b);
+  const glm::vec3 c(b[0], b[1], b[2]);
+  const float r = b[3];
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 1), u01(0, 1);
+  Tally t;
+  for (int i = 0; i < kFrames; ++i) {
+    const glm::vec3 target = c + glm::vec3(u(rng), 0.3f * u(rng), u(rng)) * (0.7f * r);
+    glm::vec3 dir(u(rng), 0.1f + 0.9f * u01(rng), u(rng));
+    const glm::vec3 eye = target + glm::normalize(dir) * (r * (0.3f + 1.7f * u01(rng)));
+    const geom::Camera view = camera(eye, target, 30 + 40 * u01(rng), r * 0.01f, r * 100, 160, 120);
+    geom::Light light;
+    if (kind == Kind::Directional) {
+      light = sun(glm::vec3(u(rng), 0.05f + u01(rng), u(rng)));
+    } else {
+      const glm::vec3 p = c + glm::vec3(u(rng), 0.1f + u01(rng), u(rng)) * (1.5f * r);
+      if (kind == Kind::Point) {
+        light = point_light(p);
+      } else {
+        const glm::vec3 aim = c + glm::vec3(u(rng), 0, u(rng)) * (0.5f * r);
+        light = spot_light(p, aim - p, 20 + 40 * u01(rng));
+      }
+    }
+    double err[3];
+    size_t certain = 0;
+    const Technique order[3] = {Technique::Uniform, Technique::Psm, Technique::Lispsm};
+    std::string drawn[3];
+    for (int k = 0; k < 3; ++k) {
+      const Comparison cmp = render_and_compare(state, scene, view, light, order[k], 256);
+      err[k] = double(cmp.wrong), certain = cmp.certain;
+      drawn[k] = render::drawn_projection(state);
+      t.sum[k] += cmp.error();
+    }
+    ++t.frames;
+    for (int k = 1; k < 3; ++k) {
+      const std::string name = render::technique_name(order[k]);
+      t.warped[k - 1] += drawn[k].rfind(name, 0) == 0 || drawn[k].find(name + " x") != std::string::npos;
+      const bool ok = err[k] <= 1.1 * err[0] + 2;
+      t.within[k - 1] += ok;
+      if (!ok)
+        std::printf("frame %d: %s %.0f wrong (%s) against uniform %.0f (%s) of %zu\n", i,
+                    render::technique_name(order[k]), err[k], drawn[k].c_str(), err[0], drawn[0].c_str(), certain);
+    }
+  }
+  return t;
+}
+
+void check(const Tally& t, const char* what) {
+  std::printf(
+      "%s: %d frames; psm within on %d (warped on %d), lispsm on %d (warped on %d); mean error uniform %.4f%%, "
+      "psm %.4f%%, lispsm %.4f%%\n",
+      what, t.frames, t.within[0], t.warped[0], t.within[1], t.warped[1], 100 * t.sum[0] / t.frames,
+      100 * t.sum[1] / t.frames, 100 * t.sum[2] / t.frames);
+  EXPECT_EQ(kFrames, t.frames);
+  EXPECT_GE(t.within[0], int(0.95 * kFrames)) << what << ": psm worse than uniform on too many frames";
+  EXPECT_GE(t.within[1], int(0.95 * kFrames)) << what << ": lispsm worse than uniform on too many frames";
+}
+
+class GlWarpLaw : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_NE(context(), nullptr);
+    geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
+    ASSERT_TRUE(imported.ok) << imported.error;
+    scene = imported.scene;
+    std::string error;
+    state = render::create_state(scene, GEOM_SHADER_DIR, error);
+    ASSERT_TRUE(state) << error;
+  }
+  geom::Scene scene;
+  render::StatePtr state;
+};
+
+TEST_F(GlWarpLaw, PointLights) { check(run_frames(*state, scene, Kind::Point, 1), "point"); }
+TEST_F(GlWarpLaw, SpotLights) { check(run_frames(*state, scene, Kind::Spot, 2), "spot"); }
+TEST_F(GlWarpLaw, DirectionalLights) { check(run_frames(*state, scene, Kind::Directional, 3), "directional"); }
+
+}  // namespace
