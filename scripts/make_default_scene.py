@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Writes data/default_scene.gltf: the bundled default scene (our own making).
 
-It shows the seeds' test situations: a jenga-like stack of blocks (the jenga
-scene of 001_0225cc27c0669b01.txt), two crossed pipes in front of a wall (the
-figures 9-11 of 000_4e3b0bad7883dc3e.txt), an open ground plane, a point light
+It shows the papers' test situations: a jenga-like stack of blocks (the jenga
+scene of Kenzel 2013), two crossed pipes in front of a wall (Bujnak 2004,
+Fig. 9-11), an open ground plane, a point light
 and a directional light (KHR_lights_punctual). One box mesh is instanced by
 many nodes with translation/rotation/scale, so the importer's transforms are
 exercised. Y is up, units are metres. Run: python3 scripts/make_default_scene.py

@@ -1,5 +1,5 @@
 #version 450 core
-// Writes the squared distance from the light (003, 12.3.3: a dot product, no
+// Writes the squared distance from the light (Gerasimov 2004, Sect. 12.3.3: a dot product, no
 // square root), into an R32F cube face.
 in vec3 v_world;
 uniform vec3 u_light_position;

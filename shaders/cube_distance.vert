@@ -1,5 +1,5 @@
 #version 450 core
-// Omnidirectional shadow map (003, Sect. 12.3): world positions to the geometry
+// Omnidirectional shadow map (Gerasimov 2004, Sect. 12.3): world positions to the geometry
 // shader, which renders all six faces in one pass.
 layout(location = 0) in vec3 a_position;
 out vec3 g_world;

@@ -5,7 +5,7 @@
 // one texel to the next (dFdx / dFdy over the map's own pixels: where the warp
 // magnifies, texels are small and so is the bias; where it compresses, both
 // grow), plus u_bias_constant (depth units) for rounding.
-// (001 Sect. 1.2 and 004 "Shadow mapping": the bias of glPolygonOffset, computed
+// (Kenzel 2013, Sect. 1.2 and Arneson, "Shadow mapping": the bias of glPolygonOffset, computed
 // here in a depth that the warp does not distort.)
 in vec3 v_position;
 uniform float u_bias_slope;

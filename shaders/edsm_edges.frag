@@ -1,5 +1,5 @@
 #version 450 core
-// Edge distance shadow map (001, Kenzel), distance-map pass, per sample, with
+// Edge distance shadow map (Kenzel 2013), distance-map pass, per sample, with
 // two edges per texel (the thesis's future work, Sect. 6.1: "more than one
 // channel to store the distance to more than one edge"; Sect. 5.2's failure
 // cases are where the nearest edge alone is not enough):

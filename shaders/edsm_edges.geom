@@ -1,5 +1,5 @@
 #version 450 core
-// Edge distance shadow map (001, Kenzel), distance-map pass.
+// Edge distance shadow map (Kenzel 2013), distance-map pass.
 // Silhouette detection (Sect. 3.2.1): the winding of a projected triangle is the
 // sign of det[p1 p2 p3] of its clip-space (x, y, w) columns; an edge is a
 // silhouette when the triangle faces the light (det > 0) and its neighbour

@@ -1,5 +1,5 @@
 #version 450 core
-// Edge distance shadow map (001, Kenzel, Sect. 3.2 and 4.2.1), distance-map
+// Edge distance shadow map (Kenzel 2013, Sect. 3.2 and 4.2.1), distance-map
 // pass: welded vertices to light clip space; the geometry shader works on the
 // adjacency index buffer (geom/adjacency.h, GL_TRIANGLES_ADJACENCY).
 layout(location = 0) in vec3 a_position;

@@ -3,7 +3,7 @@
 // own half width (edsm_soft_edges.geom) and one priority scale for all quads
 // (u_max_half_width), so that the depth test compares quads of any width.
 // As in edsm_edges.frag:
-// Edge distance shadow map (001, Kenzel), distance-map pass, per sample:
+// Edge distance shadow map (Kenzel 2013), distance-map pass, per sample:
 //  - the signed distance to the edge's line in texels (r) and the edge's light
 //    depth at the sample (g) are written to the RG32F map;
 //  - corner priority (eq. 3.8, its spherical form near a corner vertex): the

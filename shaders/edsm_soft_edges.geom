@@ -4,7 +4,7 @@
 // can cast (soft_light.frag's estimate for a receiver at the light frustum's
 // far plane behind the edge's nearer end), at least u_half_width texels, at
 // most u_max_half_width. The rest as in edsm_edges.geom:
-// Edge distance shadow map (001, Kenzel), distance-map pass.
+// Edge distance shadow map (Kenzel 2013), distance-map pass.
 // Silhouette detection (Sect. 3.2.1): the winding of a projected triangle is the
 // sign of det[p1 p2 p3] of its clip-space (x, y, w) columns; an edge is a
 // silhouette when the triangle faces the light (det > 0) and its neighbour

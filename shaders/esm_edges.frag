@@ -1,5 +1,5 @@
 #version 450 core
-// Extended shadow map (000, Bujnak), silhouette quad pass: edge distance and
+// Extended shadow map (Bujnak 2004), silhouette quad pass: edge distance and
 // edge depth are written beside the depth map into an RGBA32F map with MAX
 // blending (Sect. 4.1; the map is cleared to 0, so MAX alone does what the
 // paper's ONE / DESTALPHA factors do: the first quad's values pass, later ones

@@ -1,5 +1,5 @@
 #version 450 core
-// esm-exact's quad pass (render/src/esm.cpp): seed 000's silhouette quads
+// esm-exact's quad pass (render/src/esm.cpp): Bujnak 2004's silhouette quads
 // (esm_quad.vert: the degenerate quads with their bevel quads, Sect. 4.1)
 // drawn WITH a depth test that resolves overlaps, instead of the paper's MAX
 // blending of the encoded distance. Per sample, into an RG32F map cleared to
@@ -10,13 +10,13 @@
 //   g  the edge's own light window depth at the sample's foot on it
 // Priority (written as fragment depth, the smallest kept): 0.95 of the edge's
 // light depth, 0.05 of the distance to the edge segment (the corner vertex
-// beyond its ends), as lookup_edsm.frag's distance map does (seed 001, eq. 3.8
+// beyond its ends), as lookup_edsm.frag's distance map does (Kenzel 2013, eq. 3.8
 // resolved with depth): where quads overlap the edge nearer the light wins, a
 // caster's edge over a receiver's own outline. MAX blending keeps the edge the
 // sample is least inside, which on jenga is the lower block's own outline.
 // The weight of depth, measured (geombench jenga@512 error_cast pixels, 1
 // frame): 0.8 1,496, 0.95 658, 0.99 1,387; 2048 and the other scenes the same.
-// Edges hidden from the light are not written (000, Sect. 3.1): the edge's
+// Edges hidden from the light are not written (Bujnak 2004, Sect. 3.1): the edge's
 // depth against the farthest of the 3 x 3 depth-map texels around the sample
 // (against the texel under the sample alone, as the paper's depth test does:
 // the same within a pixel on jenga, default, scan, quake3 and duelling at 512

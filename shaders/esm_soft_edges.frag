@@ -9,7 +9,7 @@
 //   b  edge depth (the edge's light window depth at the sample's foot on it):
 //      MAX keeps the farthest edge
 //   a  1: this texel holds silhouette information
-// Edges hidden from the light are not written (000, Sect. 3.1), as in esm_edges.frag.
+// Edges hidden from the light are not written (Bujnak 2004, Sect. 3.1), as in esm_edges.frag.
 in float v_side;
 flat in vec4 v_edge;  // edge end points in the light's NDC
 uniform float u_map_size;

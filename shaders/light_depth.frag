@@ -1,7 +1,7 @@
 #version 450 core
 // Linear light depth of the focused maps (psm, lispsm, uniform), linked into
 // both their depth pass (depth_linear.frag) and their lookup (lookup_focused.frag).
-// The warped map of a perspective shadow map (002) keeps its light matrix for
+// The warped map of a perspective shadow map (Stamminger and Drettakis 2002) keeps its light matrix for
 // x, y only: the post-perspective z/w of the warp crowds the far receivers'
 // depths into a sliver of [0, 1] (and a slope-scaled glPolygonOffset measured
 // there over- or under-biases by the warp's local scale: acne on some faces,

@@ -1,5 +1,5 @@
 #version 450 core
-// Lookup of the omnidirectional cube shadow map (003, Gerasimov, Sect. 12.3-12.4):
+// Lookup of the omnidirectional cube shadow map (Gerasimov 2004, Sect. 12.3-12.4):
 // the map stores the squared distance to the light; the fragment's squared
 // distance times a multiplicative bias (12.3.7: "fDistSquared * DepthBias works
 // best in practice") is compared with 4 taps around the light-to-fragment

@@ -1,5 +1,5 @@
 #version 450 core
-// Edge distance shadow map lookup (001, Kenzel, Sect. 4.2.2) with two edges
+// Edge distance shadow map lookup (Kenzel 2013, Sect. 4.2.2) with two edges
 // per texel, the thesis's own remedy for Sect. 5.2 (Sect. 6.1: "more than one
 // channel to store the distance to more than one edge"; the map is
 // shaders/edsm_edges.frag: per texel the two nearest edges as lines, distance

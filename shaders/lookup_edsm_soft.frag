@@ -1,5 +1,5 @@
 #version 450 core
-// Soft shadows from edge distance (001, Sect. 6 and Fig. 6.1; 000, Sect. 3.2):
+// Soft shadows from edge distance (Kenzel 2013, Sect. 6 and Fig. 6.1; Bujnak 2004, Sect. 3.2):
 // the edge distance shadow map's signed distance, reconstructed by one bilinear
 // interpolation as in lookup_edsm.frag, becomes a light fraction through the
 // kernel of a disc light (soft_light.frag): the distance in units of the

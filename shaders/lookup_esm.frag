@@ -1,5 +1,5 @@
 #version 450 core
-// Extended shadow map lookup (000, Bujnak, Sect. 3.2 and 4.2), the paper's:
+// Extended shadow map lookup (Bujnak 2004, Sect. 3.2 and 4.2), the paper's:
 // the depth map and the edge depth are point filtered (the nearest texel) and
 // used as flags, the encoded edge distance is interpolated bilinearly (0.75,
 // the depth pass's value, where no quad wrote) and sent through the transfer

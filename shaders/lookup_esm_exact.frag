@@ -6,7 +6,7 @@
 // light depth. The 2 x 2 depth comparisons (gathered) decide fully lit and
 // fully shadowed footprints; otherwise the bilinear distance decides, its zero
 // (the 50% point) on the true edge: a straight edge's signed distance is
-// linear, so bilinear interpolation reproduces it (000 Sect. 3.1).
+// linear, so bilinear interpolation reproduces it (Bujnak 2004, Sect. 3.1).
 //  - no texel's edge in front of the receiver (its stored depth kInFront
 //    nearer the light than the receiver's plane at the texel's centre, the
 //    receiver's window depth carried along its screen-derivative slope):

@@ -2,7 +2,7 @@
 // Lookup of a 2D shadow map (ssm, pcf; the focused maps psm / lispsm / uniform
 // use lookup_focused.frag, whose depth is linear).
 // The map holds light-space depth written with a slope-scaled depth bias
-// (glPolygonOffset; 001 Sect. 1.2, 004 "Shadow mapping"), compared in hardware
+// (glPolygonOffset; Kenzel 2013, Sect. 1.2, Arneson, "Shadow mapping"), compared in hardware
 // (sampler2DShadow, GL_LEQUAL). u_pcf = 0: one nearest-texel comparison (simple
 // shadow map); 1: percentage-closer filtering, 3 x 3 bilinear comparison taps
 // one texel apart (a 4 x 4 texel footprint), averaged after comparison.

@@ -1,6 +1,6 @@
 #version 450 core
 // Shadow silhouette map (Sen et al. 2003), silhouette-map pass. Silhouette
-// edges from the light are found as in the edge distance map (001, Sect.
+// edges from the light are found as in the edge distance map (Kenzel 2013, Sect.
 // 3.2.1: a triangle facing the light whose neighbour across the edge does not;
 // boundary edges from both sides) and drawn as thin quads covering every
 // silhouette-map cell the segment touches (conservative: 0.75 texel around the

@@ -1,6 +1,6 @@
 #version 450 core
 // Shadow silhouette map (Sen, Cammarano and Hanrahan 2003; summarised in seed
-// 001, Sect. 2): silhouette-map pass, welded vertices to light clip space; the
+// Kenzel 2013, Sect. 2): silhouette-map pass, welded vertices to light clip space; the
 // geometry shader works on the adjacency index buffer (geom/adjacency.h).
 layout(location = 0) in vec3 a_position;
 uniform mat4 u_matrix;  // world -> light clip

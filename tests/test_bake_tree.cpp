@@ -1,4 +1,4 @@
-// geombake bake as a build step (issue 17), run as a child process on real files:
+// geombake bake as a build step, run as a child process on real files:
 //   - trees: a directory walks recursively, outputs mirror it under -o DIR with
 //     the input's extension kept (equal base names in two folders, pig.off and
 //     pig.stl side by side never collide), a symlink loop and what else is

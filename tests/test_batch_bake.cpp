@@ -1,4 +1,4 @@
-// Batch baking with the geombake CLI (issue 8, parts 4 and 5), run as a child
+// Batch baking with the geombake CLI, run as a child
 // process on real files of every format:
 //   - outputs are byte-identical across runs and thread counts (-j 1, -j 2, -j 3),
 //     and so is the --json report on stdout;

@@ -411,7 +411,7 @@ TEST(Focus, PointLightOnCameraPlaneIsDirectional) {
 }
 
 // A directional light parallel to the image plane stays directional after
-// the perspective (seed 002, Sect. 3.1: the ideal case, Fig. 3).
+// the perspective (Stamminger and Drettakis 2002, Sect. 3.1: the ideal case, Fig. 3).
 TEST(Focus, DirectionalAcrossViewStaysDirectional) {
   FrameSetup s = basic_setup();
   P3 v = unit(P3{s.target[0] - s.eye[0], s.target[1] - s.eye[1], s.target[2] - s.eye[2]});

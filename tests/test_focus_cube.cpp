@@ -1,5 +1,5 @@
-// Tests of geom/focus.h's cube faces (seed 003_478065b2696af70d.txt,
-// Gerasimov, "Omnidirectional Shadow Mapping"): focus_cube_faces' six
+// Tests of geom/focus.h's cube faces (Gerasimov 2004,
+// "Omnidirectional Shadow Mapping"): focus_cube_faces' six
 // matrices and focus_cube_face_of, against OpenGL's cube-map face table.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The coverage law of geom/focus.h's light matrix, checked independently of
-// the focus code (issue 18): every receiver of V n S n L (a point the camera
+// the focus code: every receiver of V n S n L (a point the camera
 // sees, in the scene bounds, lit by the light) and every possible caster of
 // one (a point of S n L on the segment from the receiver to the light) maps
 // to w > 0 inside the light's clip volume, x, y, z in [-1, 1].

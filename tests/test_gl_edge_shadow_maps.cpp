@@ -1,9 +1,9 @@
-// Edge distance (edsm, 001) and extended (esm, 000) shadow maps against the
+// Edge distance (edsm, Kenzel 2013) and extended (esm, Bujnak 2004) shadow maps against the
 // simple shadow map at the same map size, on the crossed-pipes scene: both
 // reconstruct the silhouette between texels, so their masks are closer to the
 // ray-cast reference than the simple map's. Also: they agree with the
 // reference away from boundaries as well as a shadow map does; and on a jenga
-// tower and the default scene's block tower, seed 001's Sect. 5.2 cases (with
+// tower and the default scene's block tower, Kenzel 2013's Sect. 5.2 cases (with
 // esm-exact's and sssm's bounds beside edsm's).
 //
 //   top view:   wall  ==================
@@ -86,9 +86,9 @@ TEST(GlEdgeShadowMaps, CloserToTheReferenceThanTheSimpleShadowMap) {
   }
 }
 
-// Issue 18's case: a point light inside the scene's bounds, whose receivers
+// A point light inside the scene's bounds, whose receivers
 // need more than one frustum: esm and edsm drawn as six cube faces with their
-// edge maps, against the cube technique (seed 003's cube map with its 4-tap
+// edge maps, against the cube technique (Gerasimov 2004's cube map with its 4-tap
 // filter) at two map sizes; the silhouette maps beat it on the cast-shadow
 // class. (ssm draws six fitted faces of its own: render/src/light_fit.cpp.)
 TEST(GlEdgeShadowMaps, PointLightInsideTheSceneAsCubeFaces) {
@@ -116,18 +116,19 @@ TEST(GlEdgeShadowMaps, PointLightInsideTheSceneAsCubeFaces) {
   }
 }
 
-// Seed 001's stated failure cases (Sect. 5.2) on a jenga tower: every block
-// shadows the block below it, so a receiver's outline and a caster's edge
-// fall in one texel and edges lie under 2 texels apart. The edge distance map
-// must get at most a tenth of what the simple map gets wrong (issue 18's
-// goal). With one edge per texel and the nearest comparison deciding where a
-// texel's edge disagrees, edsm was 208 and 34 wrong pixels against ssm's 347
-// and 114 at 128 and 256; with the plane through the other three texels 100
-// and 10 (half of ssm's, not a tenth); with two edges per texel
-// (shaders/lookup_edsm.frag) 19 and 1. esm-exact (seed 000's quads with a
-// depth-resolved priority) must reach a third of ssm's, and the paper's esm at
-// least beat it: with the dilation's z-bias at 2e-3 of window depth instead of
-// 2e-2 esm got 320 / 615 wrong against ssm's 347 / 114, and this test failed.
+// Kenzel 2013's stated failure cases (Sect. 5.2.1) on a jenga tower: every
+// block shadows the block below it, so a receiver's outline and a caster's
+// edge fall in one texel and edges lie under 2 texels apart. Kenzel 2013,
+// Sect. 5.2, reports exact hard shadows where the simple map is jagged; even
+// in these cases the edge distance map must get at most a tenth of what the
+// simple map gets wrong. One edge per
+// texel is not enough for that: where two edges share a texel, neither the
+// nearest comparison nor the plane through the other three texels resolves
+// them, which is why shaders/lookup_edsm.frag keeps two edges per texel.
+// esm-exact (Bujnak 2004's quads with a depth-resolved priority) must reach a
+// third of ssm's, and the paper's esm at least beat it; esm needs the
+// dilation's z-bias at 2e-2 of window depth for that (at 2e-3 it loses to
+// ssm).
 geom::Scene jenga_tower() {
   geom::Scene s;
   add_ground(s, 4);

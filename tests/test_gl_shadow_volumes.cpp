@@ -1,5 +1,5 @@
 // Stencil shadow volumes (sv, sv-zpass, sv-zfail) against the ray-cast
-// reference. Law (MISSION.md, 004): the mask equals the exact one on every
+// reference. Law (Arneson, Sect. 4): the mask equals the exact one on every
 // pixel not within one pixel of a true boundary, for closed, open and
 // non-manifold casters, with the camera outside and inside a shadow volume.
 // Depth-pass with the camera inside a volume is the classic failure: it is
@@ -141,7 +141,7 @@ TEST(GlShadowVolumes, CameraInsideAVolume) {
   }
 }
 
-// Hard cases (MISSION.md): coordinates far from the origin, the light behind
+// Hard cases: coordinates far from the origin, the light behind
 // the viewer, the light in the plane of faces (grazing); the light exactly at
 // a caster's vertex and inside a caster's face (LightOnACaster below).
 TEST(GlShadowVolumes, HardCases) {

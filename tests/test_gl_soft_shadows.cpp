@@ -1,5 +1,5 @@
-// Soft shadows from edge distance (edsm-soft, seed 001, Sect. 6; esm-soft, the
-// extended shadow map's distance, seed 000, Sect. 3.2) and the PCF baseline of
+// Soft shadows from edge distance (edsm-soft, Kenzel 2013, Sect. 6; esm-soft,
+// the extended shadow map's distance, Bujnak 2004, Sect. 3.2) and the PCF baseline of
 // matching width (pcf-soft), under a disc light: a plate's straight edge above
 // a ground, seen from above across its penumbra, random heights, light
 // positions, radii and map sizes. The laws: edsm-soft's and esm-soft's light

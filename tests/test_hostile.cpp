@@ -1,4 +1,4 @@
-// Hostile input and faults (issue 15), run against the geombake binary of this
+// Hostile input and faults, run against the geombake binary of this
 // build as a child process: every case gets a clean `Error: FILE: cause` (or a
 // correct bake), the other inputs of the batch still bake, nothing but
 // finished outputs is left in the output folder, and nothing outside what the
@@ -116,7 +116,8 @@ pid_t spawn(const std::vector<std::string>& args, const std::vector<std::string>
 }  // namespace
 
 // A FIFO, a device and a directory are refused by name before they are opened
-// (a FIFO used to hang bake, info and inspect); the other inputs bake.
+// (opening a FIFO blocks until a writer comes, so bake, info and inspect would
+// hang on one); the other inputs bake.
 TEST(Hostile, FifoDeviceAndDirectoryRefusedByName) {
   const fs::path d = scratch("fifo");
   ASSERT_EQ(::mkfifo((d / "pipe.obj").c_str(), 0644), 0);
@@ -149,8 +150,8 @@ TEST(Hostile, FifoDeviceAndDirectoryRefusedByName) {
 }
 
 // A 100 GB sparse file (more than this machine's memory) is refused before any
-// allocation; the other inputs bake (it used to abort the whole batch with an
-// uncaught bad_alloc). A huge file that is not a baked file costs inspect 64 bytes.
+// allocation; the other inputs bake (an uncaught bad_alloc would abort the
+// whole batch). A huge file that is not a baked file costs inspect 64 bytes.
 TEST(Hostile, SparseFileLargerThanMemory) {
   const fs::path d = scratch("sparse");
   const uint64_t memory = uint64_t(::sysconf(_SC_PHYS_PAGES)) * uint64_t(::sysconf(_SC_PAGESIZE));
@@ -260,7 +261,7 @@ TEST(Hostile, PlantedSymlinksAndStaleTempFiles) {
 }
 
 // Writers of one output at once (separate processes, as in separate PID
-// namespaces, where a pid-named temp file used to be shared): each publishes a
+// namespaces, where two writers can have the same pid): each publishes a
 // complete file, and no temporary file is left.
 TEST(Hostile, ConcurrentWritersNeverShareATempFile) {
   const fs::path d = scratch("concurrent"), out = d / "out";
@@ -424,7 +425,8 @@ TEST(Hostile, NotAMeshAndBadOutputs) {
   EXPECT_EQ(leftovers(d / "out"), std::vector<std::string>());
 }
 
-// A million glTF nodes bake in linear time (one used to run past 180 s).
+// A million glTF nodes bake in linear time: at this size anything worse than
+// linear runs for minutes.
 TEST(Hostile, MillionGltfNodes) {
   const fs::path d = scratch("nodes");
   const int n = cli::kSanitizerFactor > 1 ? 100000 : 1000000;

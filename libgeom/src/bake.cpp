@@ -272,7 +272,7 @@ class Baker {
     // Streamed, the ESM quads and (without lights: no light volume reads the
     // generic one) the volume's side records and caps go to the file as their
     // stage makes them, a piece at a time: they are most of the file, and
-    // were the bake's peak.
+    // held whole in memory they would be the bake's peak.
     stream_esm_ = out_ && asked_.esm;
     stream_volume_ = out_ && asked_.volume && lights_.empty();
     if (stream_esm_) po.esm_options.quads_out = [this](const EsmQuad* q, size_t n) { quads_.write(q, n); };

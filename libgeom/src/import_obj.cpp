@@ -11,7 +11,7 @@
 // Every other OBJ statement (vt, vn, usemtl, mtllib, s, comments...) is
 // ignored; `#` starts a comment, also after a statement. A file with no face
 // and a line that is no OBJ statement ("hello", random bytes) is refused: it
-// is not a mesh (issue 15), where it used to bake empty.
+// is not a mesh, and an empty bake would hide the mistake.
 //
 // Text: LF, CRLF or CR-only line ends, a missing final newline, a UTF-8
 // byte-order mark, and `\` at the end of a line joining it with the next.

@@ -1,5 +1,5 @@
-// cube.cpp: the omnidirectional shadow map of a point or spot light (seed
-// 003, 12.3-12.4): an R32F cube of squared distances and a cube depth buffer
+// cube.cpp: the omnidirectional shadow map of a point or spot light
+// (Gerasimov 2004, Sect. 12.3-12.4): an R32F cube of squared distances and a cube depth buffer
 // for the z-test, all six faces rendered in one layered pass
 // (shaders/cube_distance.*); the lookup is shaders/lookup_cube.frag.
 #include <algorithm>

@@ -16,7 +16,7 @@ enum class EdgeTarget {
   EdgePair,     // edsm, first edge: RGBA32UI cleared to "no edge" (depth bits all ones) and depth-tested
   EdgeSecond,   // edsm, second edge (peeled): the first pass's colours kept, depth cleared and tested
   Silhouette,   // sssm: RG32UI cleared to 0 (the cell's centre) and depth-tested from 1
-  ExtendedMax,  // esm: cleared to 0, no depth test, MAX blending (seed 000, Sect. 4.1)
+  ExtendedMax,  // esm: cleared to 0, no depth test, MAX blending (Bujnak 2004, Sect. 4.1)
 };
 
 // The face's depth map (slope-scaled bias `slope`, shadow_map.cpp), the edge

@@ -1,4 +1,4 @@
-// edsm.cpp: the edge distance shadow map (seed 001, Sect. 4.2.1): the depth
+// edsm.cpp: the edge distance shadow map (Kenzel 2013, Sect. 4.2.1): the depth
 // map, then a geometry shader finds the silhouette edges of each caster's
 // triangles with adjacency (geom/adjacency.h) and writes the nearest edge's
 // line and depth (shaders/edsm_edges.*); a second pass over the same edges

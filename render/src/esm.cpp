@@ -1,4 +1,4 @@
-// esm.cpp: the extended shadow map (seed 000, Sect. 4.1-4.2): the depth map,
+// esm.cpp: the extended shadow map (Bujnak 2004, Sect. 4.1-4.2): the depth map,
 // then the caster's silhouette quads (geom/esm_quads.h, extruded in
 // shaders/esm_quad.vert) write edge distance and edge depth beside it.
 //  - esm, the paper's: MAX blending of the encoded distance

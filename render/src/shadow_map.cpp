@@ -1,7 +1,8 @@
 // shadow_map.cpp: ssm and pcf, and the depth map every map technique starts
 // from (esm, edsm, the focused maps): a depth map from the light with
-// slope-scaled bias (001, Sect. 1.2; 004, glPolygonOffset); the lookup and
-// its 2x2 bilinear PCF are shaders/lookup_shadow_map.frag.
+// slope-scaled bias (Kenzel 2013, Sect. 1.2; Arneson, glPolygonOffset); the
+// lookup and its PCF (3 x 3 bilinear comparison taps one texel apart) are
+// shaders/lookup_shadow_map.frag.
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -126,7 +127,7 @@ bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool lin
   glEnable(GL_DEPTH_CLAMP);
   if (!linear_light) {
     glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (001, Sect. 1.2; 004, glPolygonOffset)
+    glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (Kenzel 2013, Sect. 1.2; Arneson, glPolygonOffset)
   }
   glUseProgram(p);
   draw_scene(s);
@@ -174,7 +175,7 @@ GLuint depth_sampler(State& s) {
   return s.depth_sampler;
 }
 
-// ssm: one depth map, nearest lookup; pcf: the same with bilinear 2x2 taps.
+// ssm: one depth map, nearest lookup; pcf: the same with 3 x 3 bilinear comparison taps.
 // The light frustum is fitted to what the camera sees (light_fit.cpp); a point
 // light that needs more than one frustum gets six faces, each its own depth
 // map (shaders/lookup_shadow_faces.frag), and the frame says so ("6 faces").

@@ -1,4 +1,4 @@
-// shadow_volume.cpp: stencil shadow volumes (seed 004; seed 001 Sect. 5;
+// shadow_volume.cpp: stencil shadow volumes (Arneson; Kenzel 2013, Sect. 5;
 // geom/shadow_volume.h): depth and ambient, the volume of every caster
 // counted in the stencil buffer (shaders/shadow_volume.vert, volume.frag),
 // depth-fail (sides and caps) or depth-pass (sides) chosen per caster as an
@@ -15,8 +15,9 @@ namespace {
 // May some point of the camera's near-plane rectangle lie inside this
 // caster's shadow volume? Depth-pass counts the volume faces from the near
 // plane to the visible surface, so it is exact only where the count on the
-// near plane is zero (004, depth-pass vs depth-fail). A point p lies in the volume only if the segment from p to the
-// light meets the caster, so every such point lies in the convex hull of the
+// near plane is zero (Arneson, depth-pass vs depth-fail). A point p lies in
+// the volume only if the segment from p to the light meets the caster, so
+// every such point lies in the convex hull of the
 // near rectangle and the light (for a directional light, the rectangle swept
 // to infinity towards the light): the light may lie on either side of the
 // near plane, or on it. The eye joins the rectangle (with GL_DEPTH_CLAMP the

@@ -1,7 +1,7 @@
 // silhouette_faces.cpp: the light frames of the map techniques drawn as one
 // fitted frustum or six faces (light_fit.cpp, focused.cpp), and the 2D-array
-// textures their faces are gathered into. esm, edsm, sssm and esm-soft (seed
-// 000, Sect. 4: a point light as six maps) draw each face's depth map and
+// textures their faces are gathered into. esm, edsm, sssm and esm-soft
+// (Bujnak 2004, Sect. 4: a point light as six maps) draw each face's depth map and
 // edge map with their own 2D passes and copy them into layer i of a 2D-array
 // depth texture and a 2D-array edge texture; ssm, pcf and the focused maps
 // draw six depth maps (depth_faces). The lookup (shaders/lookup_faces.frag)

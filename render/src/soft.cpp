@@ -1,5 +1,5 @@
 // soft.cpp: soft shadows of a disc light (FrameSettings::light_radius).
-//  - edsm-soft (seed 001, Sect. 6 and Fig. 6.1; seed 000, Sect. 3.2): the edge
+//  - edsm-soft (Kenzel 2013, Sect. 6 and Fig. 6.1; Bujnak 2004, Sect. 3.2): the edge
 //    distance shadow map's passes (the depth map, then the edge quads of
 //    edsm_edges.vert and edsm_soft_edges.geom / .frag: each as wide as the
 //    widest penumbra its edge casts, kMaxReach texels at most); the lookup (shaders/lookup_edsm_soft.frag) turns the

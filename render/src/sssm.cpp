@@ -1,5 +1,5 @@
 // sssm.cpp: shadow silhouette maps (Sen, Cammarano and Hanrahan 2003, the
-// baseline seed 001 compares EDSM with): the depth map, then a geometry shader
+// baseline Kenzel 2013 compares EDSM with): the depth map, then a geometry shader
 // finds the silhouette edges of each caster's triangles with adjacency
 // (geom/adjacency.h) and stores one point on the silhouette per cell of a
 // second map offset by half a texel (shaders/sssm_edges.*); the lookup,

@@ -1,4 +1,4 @@
-// geombake bake's build-step manners (issue 17): outputs rewritten only when
+// geombake bake's build-step manners: outputs rewritten only when
 // their bytes change, and a progress line that fits the terminal.
 #pragma once
 #include <string>

@@ -1,4 +1,4 @@
-// Each input a fault domain (issue 15): whatever goes wrong while one input is
+// Each input a fault domain: whatever goes wrong while one input is
 // imported and baked (an exception, bad_alloc included, its memory limit, its
 // time limit) becomes that input's `Error: FILE: cause`, and the others go on.
 //

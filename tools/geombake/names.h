@@ -1,4 +1,4 @@
-// File names as geombake writes and checks them (issue 15): JSON strings valid
+// File names as geombake writes and checks them: JSON strings valid
 // for any name, Makefile depfile escaping, and the checks of inputs against
 // outputs.
 #pragma once

@@ -1,4 +1,4 @@
-// geombake's input trees (issue 17): what each input is named in its output
+// geombake's input trees: what each input is named in its output
 // and where its output goes under `-o DIR`.
 //
 //   a file named on the command line or in a --list file:

@@ -1,6 +1,6 @@
 // tools/geombench/bake_throughput.h: the toolkit's silhouette bake against the
-// peer libraries on the same triangles (MISSION.md part 9, issue 6 item 4,
-// issue 14):
+// peer libraries on the same triangles, so that its throughput reads as a
+// ratio to code an engine already has:
 //   bake      geom::bake_scene from the raw (seamed) triangles: everything a
 //             .gbake holds (weld, topology and its report, face planes, ESM
 //             quads, generic shadow volume, adjacency, the sections), no I/O

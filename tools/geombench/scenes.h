@@ -1,12 +1,13 @@
 // tools/geombench/scenes.h: the scenes geombench measures, built in code (no
 // big files committed) or read from Debian's data, each with its camera and
-// light. The hard cases of MISSION.md and the seeds:
+// light. The hard cases the papers name and the ones that break shadow maps:
 //   default    data/default_scene.gltf with its own light
-//   pipes      crossed pipes in front of a wall, point light (seed 000, its figure of crossing shadows)
-//   jenga      9 towers of 55 levels of 3 blocks: 17,820 triangles (seed 001's jenga size)
-//   heavy      a rippled sphere of 501,000 triangles over a ground (seed 001's phaeno size)
-//   wide-depth a 400 m alley of pillars seen from one end, light perpendicular to the view (seed 002 fig. 1)
-//   duelling   the same alley, light facing the camera ("duelling frusta", seed 002)
+//   pipes      crossed pipes in front of a wall, point light (Bujnak 2004, its figure of crossing shadows)
+//   jenga      9 towers of 55 levels of 3 blocks: 17,820 triangles (Kenzel 2013's jenga size)
+//   heavy      a rippled sphere of 501,000 triangles over a ground (Kenzel 2013's phaeno size)
+//   wide-depth a 400 m alley of pillars seen from one end, light perpendicular to the view
+//              (Stamminger and Drettakis 2002, Fig. 1)
+//   duelling   the same alley, light facing the camera ("duelling frusta", Stamminger and Drettakis 2002)
 //   grazing    blocks on a ground, a directional light 3 degrees above the ground plane
 //   scan       the Stanford bunny (a real scan, tests/data/draco/bunny_gltf.drc) on a ground
 //   colonnade  a 200 m colonnade of round pillars seen from one end, a sun from the side (wide depth, lit from the side)

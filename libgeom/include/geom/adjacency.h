@@ -1,7 +1,7 @@
 // geom/adjacency.h: index buffers for GL_TRIANGLES_ADJACENCY.
 //
-// For the geometry-shader silhouette test of edge distance shadow maps (seed
-// 001_0225cc27c0669b01.txt, section 3.2.1): an edge is a silhouette when the
+// For the geometry-shader silhouette test of edge distance shadow maps
+// (Kenzel 2013, Sect. 3.2.1): an edge is a silhouette when the
 // triangle and its neighbour across that edge project with opposite windings.
 //
 // Layout: 6 uint32 indices per input triangle (i0 i1 i2), in triangle order:

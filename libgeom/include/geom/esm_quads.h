@@ -1,6 +1,6 @@
 // geom/esm_quads.h: the degenerate silhouette quads of extended shadow maps.
 //
-// Seed 000_4e3b0bad7883dc3e.txt, sections 3.1 and 4.1, figures 3-5. Each
+// Bujnak 2004, Sect. 3.1 and 4.1, Fig. 3-5. Each
 // candidate edge becomes a degenerate quad whose four corners are the two edge
 // endpoints taken twice: once on side A, once on side B. A corner carries its
 // position, the plane of its side's face and the quad's extrusion vector q. Per

@@ -1,9 +1,9 @@
 // geom/shadow_volume.h: static, light-independent stencil shadow volumes that
 // stay correct for closed, open and non-manifold meshes.
 //
-// Seeds: 004_3832d04cb6bd7525.txt section 4 (extrusion to infinity with w = 0,
+// Arneson, Real-Time Shadows, Sect. 4 (extrusion to infinity with w = 0,
 // depth-pass / depth-fail, game levels that are not 2-manifolds), the z-fail
-// baseline of 001_0225cc27c0669b01.txt section 5. The vertex shader
+// baseline of Kenzel 2013, Sect. 5. The vertex shader
 // (shaders/shadow_volume.vert) decides everything per light; the CPU reference
 // in geom/extrude.h does the same math.
 //

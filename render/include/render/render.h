@@ -13,12 +13,12 @@
 //   focused.cpp ............ psm, lispsm, uniform: the light matrix of geom/focus.h per frame (or six faces)
 //   light_fit.cpp .......... the single-map techniques' frustum fitted to the view, or six fitted faces
 //   silhouette_faces.cpp ... the faces' 2D-array textures, and each face's passes
-//   cube.cpp ............... cube: omnidirectional map of squared distances (seed 003)
-//   esm.cpp, edsm.cpp ...... extended shadow map (seed 000), edge distance shadow map (seed 001)
+//   cube.cpp ............... cube: omnidirectional map of squared distances (Gerasimov 2004)
+//   esm.cpp, edsm.cpp ...... extended shadow map (Bujnak 2004), edge distance shadow map (Kenzel 2013)
 //   edge_pass.h, .cpp ...... the edge pass the silhouette maps share (esm, edsm, sssm, the edge-distance soft ones)
-//   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (seed 004)
-//   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, seed 001's baseline)
-//   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; seed 001 Sect. 6)
+//   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (Arneson)
+//   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, Kenzel 2013's baseline)
+//   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; Kenzel 2013, Sect. 6)
 //   esm_soft.cpp ........... esm-soft: the extended shadow map's distance under the disc (own extension of 000)
 //   inspection.cpp ......... the overlay: topology problems, silhouette quads, the focus body
 //   platform.cpp ........... EGL (headless) and GLFW (window) glue, render/platform.h
