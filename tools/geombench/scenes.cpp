@@ -277,7 +277,7 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
     b.hard = true;
     b.default_view = false;
     b.view = look({-2.5f, 2.5f, 6}, {0, 1.8f, -1}, 0.1f, 50);
-    b.description = "crossed pipes in front of a wall, point light (seed 000)";
+    b.description = "crossed pipes in front of a wall, point light (Bujnak 2004's test scene)";
   } else if (name == "jenga") {
     add_ground(b.scene, -12, 12, -12, 12);
     for (int tower = 0; tower < 9; ++tower)
@@ -291,17 +291,17 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
         }
     b.light = directional({0.5f, 1.0f, 0.3f});
     b.hard = true;
-    b.description = "9 jenga towers, 17,820 triangles (seed 001's jenga size)";
+    b.description = "9 jenga towers, 17,820 triangles (Kenzel 2013's jenga size)";
   } else if (name == "heavy") {
     add_ground(b.scene, -3, 3, -3, 3);
     const float c[3] = {0, 1.2f, 0};
     add_sphere(b.scene, 500, 1, c);
     b.light = point({2, 4, 1.5f});
-    b.description = "a rippled sphere of 501,000 triangles (seed 001's phaeno size)";
+    b.description = "a rippled sphere of 501,000 triangles (Kenzel 2013's phaeno size)";
   } else if (name == "wide-depth") {
     alley(b);
     b.light = directional({1, 0.7f, 0});
-    b.description = "400 m alley, directional light perpendicular to the view (seed 002 fig. 1)";
+    b.description = "400 m alley, directional light perpendicular to the view (Stamminger and Drettakis 2002, Fig. 1)";
   } else if (name == "duelling") {
     alley(b);
     b.light = directional({0, 0.6f, -1});
