@@ -129,7 +129,7 @@ TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
   EXPECT_EQ(all.lines("hud: ").size(), 4 * n);
   // 2 to 16 panels.
   const ViewerRun one = geomview(s, obj + " --compare ssm -o " + (s / "x.png"));
-  EXPECT_EQ(one.exit_code, 1);
+  EXPECT_EQ(one.exit_code, 2);  // bad usage (cli::kExitUsage)
   EXPECT_NE(one.err.find("2 to 16"), std::string::npos) << one.err;
 }
 
