@@ -320,6 +320,7 @@ bool open_session(Options& o, Session& s, std::string& error) {
   s.state = baked.empty() ? render::create_state(s.scene, o.shaders, error)
                           : render::create_state_baked(baked.data(), baked.size(), o.shaders, s.scene, error);
   if (!s.state) return error = o.file + ": " + error, false;
+  if (const std::string gl = render::gl_error_text(); !gl.empty()) return error = o.file + ": " + gl, false;
   s.up_axis = o.up_axis >= 0 ? o.up_axis : format_up_axis(o.file);
   o.view = framed_view(s, o.view.width, o.view.height);
   if (!resolve_camera(o, o.view, error)) return false;

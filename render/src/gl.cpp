@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
@@ -34,6 +35,19 @@ GlLimits gl_limits() {
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &l.max_renderbuffer);
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, l.max_viewport);
   return l;
+}
+
+std::string gl_error_text() {
+  std::string text;
+  for (int n = 0; n < 16; ++n) {  // a context that lost itself reports errors forever
+    const GLenum e = glGetError();
+    if (e == GL_NO_ERROR) break;
+    char b[96];
+    std::snprintf(b, sizeof b, "%sOpenGL error 0x%x%s", text.empty() ? "" : ", ", e,
+                  e == GL_OUT_OF_MEMORY ? " (GL_OUT_OF_MEMORY: out of GPU memory)" : "");
+    text += b;
+  }
+  return text;
 }
 
 void label(GLenum kind, GLuint id, const std::string& name) { glObjectLabel(kind, id, -1, name.c_str()); }

@@ -496,6 +496,7 @@ bool measure_scene(const Plan& plan, Loaded& l, Measured& m, std::string& error)
   const std::string& name = b.name;
   render::StatePtr state = render::create_state(b.scene, plan.shader_dir, error);
   if (!state) return error = "scene " + name + ": " + error, false;
+  if (const std::string gl = render::gl_error_text(); !gl.empty()) return error = "scene " + name + ": " + gl, false;
   m.renderer = render::renderer_name(*state);
   m.kind_text = render::timing_kind(*state);
   m.kind = m.kind_text.find("GPU") != std::string::npos ? "gpu" : "wall";

@@ -43,4 +43,10 @@ struct GlLimits {
 };
 GlLimits gl_limits();
 
+// The current context's pending GL errors, cleared: "" when none, else e.g.
+// "OpenGL error 0x505 (GL_OUT_OF_MEMORY: out of GPU memory)". The apps check
+// it after uploading a scene, so an upload the driver could not hold is an
+// Error, not an empty image.
+std::string gl_error_text();
+
 }  // namespace render
