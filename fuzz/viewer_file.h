@@ -29,8 +29,8 @@ inline std::string section_law(const geom::baked::Section& s) {
     n = s.stride / 4;
   if (s.format == Format::F64x3 || s.format == Format::F64x4) n = s.stride / 8, width = 8;
   const bool caps = s.type == SectionType::VolumeCaps || s.type == SectionType::LightCaps;
-  const bool sides = s.type == SectionType::EsmQuads || s.type == SectionType::VolumeSides ||
-                     s.type == SectionType::LightSides;
+  const bool sides =
+      s.type == SectionType::EsmQuads || s.type == SectionType::VolumeSides || s.type == SectionType::LightSides;
   if (s.format == Format::Record && (caps || sides)) n = caps ? 9 : 6;
   if (uint64_t(n) * width > s.stride) n = 0;
   const bool points = s.type == SectionType::Positions || s.type == SectionType::Frame ||

@@ -70,23 +70,29 @@ struct Floats {
 };
 bool floats_of(const geom::BakedSection& s, Floats& f) {
   switch (s.format) {
-    case gb::Format::F32x3: return f = {3, 4}, true;
-    case gb::Format::F32x4: return f = {4, 4}, true;
-    case gb::Format::F64x3: return f = {3, 8}, true;
-    case gb::Format::F64x4: return f = {4, 8}, true;
+    case gb::Format::F32x3:
+      return f = {3, 4}, true;
+    case gb::Format::F32x4:
+      return f = {4, 4}, true;
+    case gb::Format::F64x3:
+      return f = {3, 8}, true;
+    case gb::Format::F64x4:
+      return f = {4, 8}, true;
     case gb::Format::Record:
       if (s.type == gb::SectionType::VolumeCaps || s.type == gb::SectionType::LightCaps) return f = {9, 4}, true;
       if (s.type == gb::SectionType::EsmQuads || s.type == gb::SectionType::VolumeSides ||
           s.type == gb::SectionType::LightSides)
         return f = {6, 4}, true;
       return false;
-    default: return false;
+    default:
+      return false;
   }
 }
 
 void store(geom::BakedSection& s, size_t at, uint32_t width, double v) {
   std::vector<unsigned char> bytes(s.data(), s.data() + s.size());
-  if (width == 8) std::memcpy(&bytes[at], &v, 8);
+  if (width == 8)
+    std::memcpy(&bytes[at], &v, 8);
   else {
     const float f = float(v);
     std::memcpy(&bytes[at], &f, 4);
@@ -140,8 +146,8 @@ TEST(BakedFloats, OneBadFloatAnywhereIsRefusedByName) {
 // beyond the limit, a w other than 0 or 1, a direction too long: refused; the
 // limits themselves pass.
 TEST(BakedFloats, LightsWithinTheLimits) {
-  const double cases[][4] = {{0, 0, 0, 0},       {1e-20, 0, 0, 0}, {2e18, 0, 0, 1},
-                             {1, 1, 1, 1e-20},   {1e20, 1e20, 0, 0}, {2, 0, 0, 2}};
+  const double cases[][4] = {{0, 0, 0, 0},     {1e-20, 0, 0, 0},   {2e18, 0, 0, 1},
+                             {1, 1, 1, 1e-20}, {1e20, 1e20, 0, 0}, {2, 0, 0, 2}};
   const double fine[][4] = {{1e15, -1e15, 0, 1}, {0, -1, 0, 0}, {1e-15, 0, 0, 0}};
   for (int good = 0; good < 2; ++good)
     for (size_t c = 0; c < (good ? 3u : 6u); ++c) {

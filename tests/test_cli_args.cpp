@@ -24,13 +24,13 @@ TEST(CliArgs, IntegersAreWholeAndInRange) {
     EXPECT_EQ(cli::parse_int(text, lo, hi, out), v >= lo && v <= hi) << text;
     if (v >= lo && v <= hi) EXPECT_EQ(out, v);
     // Anything around the digits is refused.
-    for (const std::string& bad : {text + "abc", text + " ", " " + text, text + ".0", text + "e0", "0x" + text,
-                                   text + "\n", std::string("")})
+    for (const std::string& bad :
+         {text + "abc", text + " ", " " + text, text + ".0", text + "e0", "0x" + text, text + "\n", std::string("")})
       EXPECT_FALSE(cli::parse_int(bad, lo, hi, out)) << "'" << bad << "'";
   }
   long long out = 0;
-  EXPECT_FALSE(cli::parse_int("1e3", 1, 100000, out));  // --frames 1e3 is not 1
-  EXPECT_FALSE(cli::parse_int("4294968320", 16, 16384, out));  // not wrapped to 1024
+  EXPECT_FALSE(cli::parse_int("1e3", 1, 100000, out));                         // --frames 1e3 is not 1
+  EXPECT_FALSE(cli::parse_int("4294968320", 16, 16384, out));                  // not wrapped to 1024
   EXPECT_FALSE(cli::parse_int("99999999999999999999999", 0, 1LL << 62, out));  // overflow
   EXPECT_FALSE(cli::parse_int("-", -5, 5, out));
   EXPECT_TRUE(cli::parse_int("+7", 0, 10, out));
@@ -61,7 +61,8 @@ TEST(CliArgs, SizesAndListsAreStrict) {
   // parse_floats: no blank before a number (strtof would skip it).
   float v[3];
   EXPECT_TRUE(cli::parse_floats("1,2,3", 3, v));
-  for (const char* bad : {" 1,2,3", "1, 2,3", "1,2,3 ", "1,2,", "1,2"}) EXPECT_FALSE(cli::parse_floats(bad, 3, v)) << bad;
+  for (const char* bad : {" 1,2,3", "1, 2,3", "1,2,3 ", "1,2,", "1,2"})
+    EXPECT_FALSE(cli::parse_floats(bad, 3, v)) << bad;
 }
 
 TEST(CliArgs, TheErrorNamesTheFlagTheValueAndTheRange) {

@@ -26,9 +26,8 @@ struct Temp : testfs::Scratch {
 // A frame with these pieces (JSON text).
 std::string frame(const std::string& light, const std::string& fovy = "60", const std::string& aspect = "1.5",
                   const std::string& eye = "[0, 2, 10]") {
-  return "{\"camera\": {\"eye\": " + eye +
-         ", \"target\": [0, 0, 0], \"up\": [0, 1, 0], \"fovy_degrees\": " + fovy + ", \"aspect\": " + aspect +
-         ", \"near\": 0.1, \"far\": 100}, \"light\": " + light +
+  return "{\"camera\": {\"eye\": " + eye + ", \"target\": [0, 0, 0], \"up\": [0, 1, 0], \"fovy_degrees\": " + fovy +
+         ", \"aspect\": " + aspect + ", \"near\": 0.1, \"far\": 100}, \"light\": " + light +
          ", \"scene_bounds\": {\"min\": [-5, -1, -5], \"max\": [5, 3, 5]}}";
 }
 
@@ -54,8 +53,9 @@ bool usable(const std::vector<double>& m) {
     for (int r = 1; r < 4; ++r)
       for (int cc = 0; cc < 4; ++cc)
         if (cc != c) n[k++] = at(r, cc);
-    det += (c % 2 ? -1 : 1) * at(0, c) *
-           (n[0] * (n[4] * n[8] - n[5] * n[7]) - n[1] * (n[3] * n[8] - n[5] * n[6]) + n[2] * (n[3] * n[7] - n[4] * n[6]));
+    det +=
+        (c % 2 ? -1 : 1) * at(0, c) *
+        (n[0] * (n[4] * n[8] - n[5] * n[7]) - n[1] * (n[3] * n[8] - n[5] * n[6]) + n[2] * (n[3] * n[7] - n[4] * n[6]));
   }
   return std::isfinite(det) && std::fabs(det) > 1e-12 * bound;
 }
@@ -122,8 +122,8 @@ TEST(InspectHostile, TextSectionsAreEscaped) {
   Temp t;
   const std::string report = std::string("{\"x\": \"\x1b[2J\x1b]0;owned\x07\", \"y\": 1}\r\n\t") + '\0' + "end";
   std::vector<char> text(report.begin(), report.end());
-  std::vector<geom::BakedSection> sections = {geom::make_baked_section(
-      geom::baked::SectionType::TopologyReport, geom::baked::Format::Utf8, 1, "topology", text)};
+  std::vector<geom::BakedSection> sections = {geom::make_baked_section(geom::baked::SectionType::TopologyReport,
+                                                                       geom::baked::Format::Utf8, 1, "topology", text)};
   const fs::path file = t.dir / "escape.gbake";
   std::string error;
   ASSERT_TRUE(geom::write_baked(file.string(), sections, error)) << error;

@@ -55,8 +55,10 @@ TEST(FuzzViewerFile, MutationsKeepTheLaws) {
     const int edits = 1 + int(rng() % 3);
     for (int k = 0; k < edits; ++k) {
       const size_t at = 64 + rng() % (file.size() - 68);  // past the header
-      if (rng() % 2) file[at] ^= uint8_t(1u << (rng() % 8));
-      else std::memcpy(&file[at & ~size_t(3)], &specials[rng() % 5], 4);
+      if (rng() % 2)
+        file[at] ^= uint8_t(1u << (rng() % 8));
+      else
+        std::memcpy(&file[at & ~size_t(3)], &specials[rng() % 5], 4);
     }
     geom_fuzz::repair_checksums(file);
     SCOPED_TRACE("trial " + std::to_string(trial));

@@ -24,8 +24,8 @@ struct BenchRun {
 
 BenchRun geombench(const testfs::Scratch& s, const std::string& args, const std::string& wrapper = "") {
   const std::string out = s / "stdout.txt", err = s / "stderr.txt";
-  const std::string command = wrapper + " timeout 300 " + GEOMBENCH_EXE + " " + args + " >'" + out + "' 2>'" + err +
-                              "' </dev/null";
+  const std::string command =
+      wrapper + " timeout 300 " + GEOMBENCH_EXE + " " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
   const int status = std::system(command.c_str());
   BenchRun r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -64,8 +64,10 @@ TEST(HostileBench, BadUsageIsExitTwoBeforeAnyWork) {
 TEST(HostileBench, ThePlanIsValidatedBeforeMeasuring) {
   testfs::Scratch s("hostile_bench_plan");
   const std::string dir = s / "out";
-  const BenchRun r = geombench(s, "--quick --no-bake --scenes pipes,grazing --techniques pcf-soft --sizes 256 "
-                                  "--light-radius 2 -o '" + dir + "'");
+  const BenchRun r = geombench(s,
+                               "--quick --no-bake --scenes pipes,grazing --techniques pcf-soft --sizes 256 "
+                               "--light-radius 2 -o '" +
+                                   dir + "'");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("grazing"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("pipes:"), std::string::npos) << "pipes measured before the refusal: " << r.out;

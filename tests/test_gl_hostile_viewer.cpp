@@ -121,11 +121,11 @@ TEST_F(Hostile, BakedFloatsAreValidated) {
   const geom::BakeResult bake = geom::bake_scene(scene, "scene");
   ASSERT_TRUE(bake.ok) << bake.error;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (const auto& [type, value] : {std::make_pair(geom::baked::SectionType::Lights, nan),
-                                    std::make_pair(geom::baked::SectionType::Lights, 0.0),
-                                    std::make_pair(geom::baked::SectionType::Positions, nan),
-                                    std::make_pair(geom::baked::SectionType::Positions, 1e30),
-                                    std::make_pair(geom::baked::SectionType::Frame, nan)}) {
+  for (const auto& [type, value] :
+       {std::make_pair(geom::baked::SectionType::Lights, nan), std::make_pair(geom::baked::SectionType::Lights, 0.0),
+        std::make_pair(geom::baked::SectionType::Positions, nan),
+        std::make_pair(geom::baked::SectionType::Positions, 1e30),
+        std::make_pair(geom::baked::SectionType::Frame, nan)}) {
     std::vector<geom::BakedSection> sections = bake.sections;
     bool found = false;
     for (geom::BakedSection& sec : sections) {
@@ -176,8 +176,10 @@ TEST_F(Hostile, FilesAreOpenedSafely) {
     fs::create_directories(dir);
     for (const auto& e : fs::directory_iterator(GEOM_SHADER_DIR)) {
       const fs::path to = dir / e.path().filename();
-      if (std::string(kind) == "fifos") ASSERT_EQ(::mkfifo(to.c_str(), 0600), 0);
-      else fs::create_symlink("/dev/zero", to);
+      if (std::string(kind) == "fifos")
+        ASSERT_EQ(::mkfifo(to.c_str(), 0600), 0);
+      else
+        fs::create_symlink("/dev/zero", to);
     }
     const ViewerRun r = geomview(s, q(obj) + " --shaders " + q(dir.string()) + " -o " + q(png), "timeout 30");
     SCOPED_TRACE(kind);
@@ -198,9 +200,11 @@ TEST_F(Hostile, ALaterTechniqueFailingLeavesNoFolder) {
   const fs::path shaders = s.dir / "shaders";
   fs::create_directories(shaders);
   for (const auto& e : fs::directory_iterator(GEOM_SHADER_DIR))
-    if (e.path().filename().string().rfind("cube_distance", 0) != 0) fs::copy_file(e.path(), shaders / e.path().filename());
-  const ViewerRun r = geomview(s, q(obj) + " " + viewertest::kSceneView + " --technique ssm,cube --size 64x48 --shaders " +
-                                      q(shaders.string()) + " -o " + q((s.dir / "out" / "deeper").string()));
+    if (e.path().filename().string().rfind("cube_distance", 0) != 0)
+      fs::copy_file(e.path(), shaders / e.path().filename());
+  const ViewerRun r =
+      geomview(s, q(obj) + " " + viewertest::kSceneView + " --technique ssm,cube --size 64x48 --shaders " +
+                      q(shaders.string()) + " -o " + q((s.dir / "out" / "deeper").string()));
   expect_refused(s, r, 1, "cube_distance", {"scene.obj", "shaders"});
 }
 

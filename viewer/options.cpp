@@ -141,7 +141,8 @@ namespace {
 bool parse_values(const cli::Args& args, Options& o, std::string& error) {
   o.settings.inspect = args.has("--inspect");
   const std::string output = args.get("--output", "color");
-  if (output != "color" && output != "mask") return error = "--output must be color or mask, not '" + output + "'", false;
+  if (output != "color" && output != "mask")
+    return error = "--output must be color or mask, not '" + output + "'", false;
   o.settings.output = output == "mask" ? render::Output::Mask : render::Output::Color;
   double radius = 0;
   if (!cli::int_option(args, "--shadow-map-size", kMinMapSize, kMaxMapSize, o.settings.shadow_map_size, error) ||
@@ -204,10 +205,26 @@ bool parse_modes(const cli::Args& args, Options& o, std::string& error) {
 
 int parse_options(int argc, char** argv, Options& o) {
   cli::Args args(std::vector<std::string>(argv + 1, argv + argc),
-                 {"--help", "-h", "--inspect", "--window", "--hud", "--error"},
-                 {"--technique", "--compare", "--eye", "--target", "--up", "--fovy", "--near", "--far", "--light",
-                  "--spot", "--shadow-map-size", "--size", "-o", "--output", "--frames", "--shaders", "--up-axis",
-                  "--script", "--screenshot", "--light-radius"});
+                 {"--help", "-h", "--inspect", "--window", "--hud", "--error"}, {"--technique",
+                                                                                 "--compare",
+                                                                                 "--eye",
+                                                                                 "--target",
+                                                                                 "--up",
+                                                                                 "--fovy",
+                                                                                 "--near",
+                                                                                 "--far",
+                                                                                 "--light",
+                                                                                 "--spot",
+                                                                                 "--shadow-map-size",
+                                                                                 "--size",
+                                                                                 "-o",
+                                                                                 "--output",
+                                                                                 "--frames",
+                                                                                 "--shaders",
+                                                                                 "--up-axis",
+                                                                                 "--script",
+                                                                                 "--screenshot",
+                                                                                 "--light-radius"});
   if (!args.error().empty()) return fail(args.error() + " (see geomview --help)"), cli::kExitUsage;
   if (args.has("--help") || args.has("-h")) {
     std::printf(kUsage, technique_names().c_str(), default_shaders().c_str());
@@ -235,8 +252,8 @@ uint64_t baked_size_limit() {
 bool check_positions(const std::string& file, const geom::Scene& scene, std::string& error) {
   for (size_t i = 0; i < scene.positions.size(); ++i)
     if (!(std::fabs(scene.positions[i]) <= cli::kMaxCoordinate))
-      return error = file + ": vertex " + std::to_string(i / 3) + ": coordinate " +
-                     std::to_string(scene.positions[i]) + " is not a finite number within +-1e15",
+      return error = file + ": vertex " + std::to_string(i / 3) + ": coordinate " + std::to_string(scene.positions[i]) +
+                     " is not a finite number within +-1e15",
              false;
   return true;
 }
@@ -311,8 +328,8 @@ bool open_session(Options& o, Session& s, std::string& error) {
   if (!s.platform) return false;
   if (!note.empty()) cli::warning("%s", note.c_str());
   if (!s.platform->has_window() && (!o.script.empty() || !o.screenshot.empty()))
-    return error = std::string(o.script.empty() ? "--screenshot" : "--script") + " needs a window, and none could open" +
-                   (note.empty() ? "" : " (" + note + ")"),
+    return error = std::string(o.script.empty() ? "--screenshot" : "--script") +
+                   " needs a window, and none could open" + (note.empty() ? "" : " (" + note + ")"),
            false;
   if (!s.platform->has_window() && o.out_path.empty())
     return error = "no window could open" + (note.empty() ? "" : " (" + note + ")") + ": give -o FILE.png", false;

@@ -37,8 +37,8 @@ bool check_resources(const Options& o, std::string& error) {
                    (cube && map > gl.max_cube_map ? "cube-map face, " + std::to_string(gl.max_cube_map)
                                                   : "texture, " + std::to_string(gl.max_texture)),
            false;
-  const uint64_t need = pixels * cli::kBytesPerImagePixel +
-                        uint64_t(map) * uint64_t(map) * cli::kBytesPerMapTexel * (cube ? 6u : 1u);
+  const uint64_t need =
+      pixels * cli::kBytesPerImagePixel + uint64_t(map) * uint64_t(map) * cli::kBytesPerMapTexel * (cube ? 6u : 1u);
   const uint64_t budget = cli::memory_budget();
   if (need > budget)
     return error = what + " (" + std::to_string(o.view.width) + "x" + std::to_string(o.view.height) +

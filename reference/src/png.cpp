@@ -2,12 +2,12 @@
 // (declared here, not defined again: see TOOLCHAIN.md on libdraco's own copies).
 #include "geom/png.h"
 
+#include <stb_image.h>
+#include <stb_image_write.h>
+
 #include <cstdint>
 
 #include "geom/atomic_file.h"
-
-#include <stb_image.h>
-#include <stb_image_write.h>
 
 namespace geom {
 

@@ -1,6 +1,5 @@
 // gl.cpp: the GL helpers of gl.h.
 #include "gl.h"
-#include "render/platform.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,6 +13,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <sstream>
+
+#include "render/platform.h"
 
 namespace render {
 
@@ -95,8 +96,10 @@ bool read_text(const std::string& path, std::string& text, std::string& problem)
   if (fd < 0) return problem = std::string("cannot open the shader (") + std::strerror(errno) + ")", false;
   struct stat st {};
   bool ok = ::fstat(fd, &st) == 0;
-  if (!ok) problem = "cannot read the shader";
-  else if (!S_ISREG(st.st_mode)) ok = false, problem = "not a regular file (a directory, FIFO or device): not read";
+  if (!ok)
+    problem = "cannot read the shader";
+  else if (!S_ISREG(st.st_mode))
+    ok = false, problem = "not a regular file (a directory, FIFO or device): not read";
   else if (uint64_t(st.st_size) > kMaxShaderBytes)
     ok = false, problem = "the shader is " + std::to_string(st.st_size) + " bytes, over the limit of " +
                           std::to_string(kMaxShaderBytes);
@@ -110,7 +113,8 @@ bool read_text(const std::string& path, std::string& text, std::string& problem)
       got += size_t(n);
     }
     char extra;
-    if (got != text.size() || ::read(fd, &extra, 1) != 0) ok = false, problem = "cannot read the shader (its size changed)";
+    if (got != text.size() || ::read(fd, &extra, 1) != 0)
+      ok = false, problem = "cannot read the shader (its size changed)";
   }
   ::close(fd);
   return ok;

@@ -110,9 +110,9 @@ int run_inspect(const std::vector<std::string>& argv) {
                 "stride", "count", "offset", "bytes", "crc32c");
     for (size_t i = 0; i < r.sections().size(); ++i) {
       const auto& s = r.sections()[i];
-      std::printf("  %-3llu %-15s %-22s %-4u %-7s %6u %12llu %10llu %12llu  %08x\n", (unsigned long long)i, s.name, type_label(s).c_str(),
-                  s.item, geom::baked::format_name(s.format), s.stride, (unsigned long long)s.count,
-                  (unsigned long long)s.offset, (unsigned long long)s.size, s.crc);
+      std::printf("  %-3llu %-15s %-22s %-4u %-7s %6u %12llu %10llu %12llu  %08x\n", (unsigned long long)i, s.name,
+                  type_label(s).c_str(), s.item, geom::baked::format_name(s.format), s.stride,
+                  (unsigned long long)s.count, (unsigned long long)s.offset, (unsigned long long)s.size, s.crc);
     }
     if (args.has("-v"))
       if (const auto* t = r.find(geom::baked::SectionType::TopologyReport))

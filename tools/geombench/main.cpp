@@ -48,9 +48,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <new>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -369,8 +369,7 @@ struct Loaded {
 // (cli/view_check.h), the light radius against its light. A scene whose data
 // is missing is skipped (listed in `skipped`); anything else wrong is an error
 // before a single measurement.
-bool load_scenes(const Plan& plan, std::vector<Loaded>& scenes, std::vector<std::string>& skipped,
-                 std::string& error) {
+bool load_scenes(const Plan& plan, std::vector<Loaded>& scenes, std::vector<std::string>& skipped, std::string& error) {
   const bool soft = std::any_of(plan.techniques.begin(), plan.techniques.end(), render::technique_is_soft);
   for (const std::string& name : plan.render ? plan.scene_names : std::vector<std::string>{}) {
     Loaded l;
@@ -415,9 +414,9 @@ bool check_gl_limits(const Plan& plan, std::string& error) {
   if (plan.width > gl.max_image_width() || plan.height > gl.max_image_height() || map > gl.max_cube_map ||
       map > gl.max_texture)
     return error = "--size " + std::to_string(plan.width) + "x" + std::to_string(plan.height) + " or shadow-map size " +
-                   std::to_string(map) + " is over this OpenGL's limits (image " + std::to_string(gl.max_image_width()) +
-                   "x" + std::to_string(gl.max_image_height()) + ", texture " + std::to_string(gl.max_texture) +
-                   ", cube-map face " + std::to_string(gl.max_cube_map) + ")",
+                   std::to_string(map) + " is over this OpenGL's limits (image " +
+                   std::to_string(gl.max_image_width()) + "x" + std::to_string(gl.max_image_height()) + ", texture " +
+                   std::to_string(gl.max_texture) + ", cube-map face " + std::to_string(gl.max_cube_map) + ")",
            false;
   return true;
 }
@@ -572,18 +571,12 @@ std::string results_json(const Plan& plan, const Measured& m, const std::vector<
                   {"speed_vs_meshopt", sp},
                   {"memory_vs_meshopt", mem}});
   }
-  const nlohmann::json j = {{"renderer", m.renderer},
-                            {"timing", m.kind_text},
-                            {"time_kind", m.kind},
-                            {"image", {{"width", plan.width}, {"height", plan.height}}},
-                            {"quick", plan.quick},
-                            {"shadow_map_sizes", plan.sizes},
-                            {"scenes", m.scenes_done},
-                            {"skipped", m.skipped},
-                            {"results", results},
-                            {"bake", bj},
-                            {"best_at_budget", best},
-                            {"goals", goal_lines}};
+  const nlohmann::json j = {{"renderer", m.renderer},  {"timing", m.kind_text},
+                            {"time_kind", m.kind},     {"image", {{"width", plan.width}, {"height", plan.height}}},
+                            {"quick", plan.quick},     {"shadow_map_sizes", plan.sizes},
+                            {"scenes", m.scenes_done}, {"skipped", m.skipped},
+                            {"results", results},      {"bake", bj},
+                            {"best_at_budget", best},  {"goals", goal_lines}};
   return j.dump(1) + "\n";
 }
 

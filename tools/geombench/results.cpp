@@ -20,9 +20,9 @@ std::string results_csv(const std::vector<Row>& rows) {
          "boundary_pixels,frames,triangles,error_cast,error_self,cast_pixels,self_pixels,error_fraction\n";
   for (const Row& r : rows)
     csv << r.scene << "," << r.technique << "," << r.size << "," << fmt("%.4f", r.time_ms) << "," << r.time_kind << ","
-        << fmt("%.6f", r.error_visible) << "," << fmt("%.6f", r.error_boundary) << "," << r.visible << ","
-        << r.boundary << "," << r.frames << "," << r.triangles << "," << fmt("%.6f", r.error_cast) << ","
-        << fmt("%.6f", r.error_self) << "," << r.cast << "," << r.self << "," << fmt("%.6f", r.error_fraction) << "\n";
+        << fmt("%.6f", r.error_visible) << "," << fmt("%.6f", r.error_boundary) << "," << r.visible << "," << r.boundary
+        << "," << r.frames << "," << r.triangles << "," << fmt("%.6f", r.error_cast) << "," << fmt("%.6f", r.error_self)
+        << "," << r.cast << "," << r.self << "," << fmt("%.6f", r.error_fraction) << "\n";
   return csv.str();
 }
 
@@ -41,8 +41,9 @@ std::string bake_csv(const std::vector<BakeRow>& bake) {
     const BakeRow& r = bake[i];
     double sp = 0, mem = 0;
     bake_ratios(bake, i, sp, mem);
-    bcsv << r.triangles << "," << r.method << "," << fmt("%.6f", r.seconds) << "," << fmt("%.0f", r.triangles_per_second)
-         << "," << fmt("%.0f", r.peak_bytes) << "," << fmt("%.3f", sp) << "," << fmt("%.3f", mem) << "\n";
+    bcsv << r.triangles << "," << r.method << "," << fmt("%.6f", r.seconds) << ","
+         << fmt("%.0f", r.triangles_per_second) << "," << fmt("%.0f", r.peak_bytes) << "," << fmt("%.3f", sp) << ","
+         << fmt("%.3f", mem) << "\n";
   }
   return bcsv.str();
 }

@@ -656,12 +656,24 @@ struct FloatLayout {
 inline FloatLayout float_layout(const Section& s) {
   FloatLayout l;
   switch (s.format) {
-    case Format::F32: l.floats = 1; break;
-    case Format::F32x2: l.floats = 2; break;
-    case Format::F32x3: l.floats = 3; break;
-    case Format::F32x4: l.floats = 4; break;
-    case Format::F64x3: l.floats = 3, l.f64 = true; break;
-    case Format::F64x4: l.floats = 4, l.f64 = true; break;
+    case Format::F32:
+      l.floats = 1;
+      break;
+    case Format::F32x2:
+      l.floats = 2;
+      break;
+    case Format::F32x3:
+      l.floats = 3;
+      break;
+    case Format::F32x4:
+      l.floats = 4;
+      break;
+    case Format::F64x3:
+      l.floats = 3, l.f64 = true;
+      break;
+    case Format::F64x4:
+      l.floats = 4, l.f64 = true;
+      break;
     case Format::Record:  // the records' points (geom/baked_records.h): floats first
       if (s.type == SectionType::EsmQuads || s.type == SectionType::VolumeSides || s.type == SectionType::LightSides)
         l.floats = 6, l.kind = FloatLayout::Coordinates;
@@ -669,17 +681,25 @@ inline FloatLayout float_layout(const Section& s) {
         l.floats = 9, l.kind = FloatLayout::Coordinates;
       if (uint64_t(l.floats) * 4 > s.stride) l.floats = 0;  // a record too short to hold them: not this layout
       return l;
-    default: return l;
+    default:
+      return l;
   }
   switch (s.type) {
     case SectionType::Positions:
-    case SectionType::Frame: l.kind = FloatLayout::Coordinates; break;
+    case SectionType::Frame:
+      l.kind = FloatLayout::Coordinates;
+      break;
     case SectionType::FacePlanes:
     case SectionType::EsmPlanes:
     case SectionType::VolumePlanes:
-    case SectionType::LightPlanes: l.kind = l.floats == 4 ? FloatLayout::Planes : FloatLayout::Finite; break;
-    case SectionType::Lights: l.kind = l.floats == 4 ? FloatLayout::Lights : FloatLayout::Finite; break;
-    default: break;
+    case SectionType::LightPlanes:
+      l.kind = l.floats == 4 ? FloatLayout::Planes : FloatLayout::Finite;
+      break;
+    case SectionType::Lights:
+      l.kind = l.floats == 4 ? FloatLayout::Lights : FloatLayout::Finite;
+      break;
+    default:
+      break;
   }
   return l;
 }

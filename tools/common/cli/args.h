@@ -6,9 +6,9 @@
 #pragma once
 #include <cctype>
 #include <cerrno>
-#include <cstdarg>
 #include <climits>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
