@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "baked_repair.h"
 #include "geom/baked_reader.h"
 
 namespace {
@@ -27,33 +28,12 @@ void require(bool law, const char* what) {
   std::abort();
 }
 
-void store_u32(unsigned char* p, uint32_t v) {
-  for (int k = 0; k < 4; ++k) p[k] = uint8_t(v >> (8 * k));
-}
-
-// Recomputes the checksums a valid writer would have stored.
-void repair_checksums(std::vector<unsigned char>& b) {
-  using namespace geom::baked;
-  if (b.size() < kHeaderSize) return;
-  const uint64_t count = detail::load_u32(&b[24]);
-  const uint64_t table_end = kHeaderSize + count * kEntrySize;
-  if (count > kMaxSections || table_end > b.size()) return;
-  for (uint64_t i = 0; i < count; ++i) {
-    unsigned char* e = &b[kHeaderSize + i * kEntrySize];
-    const uint64_t offset = detail::load_u64(e + 24), size = detail::load_u64(e + 32);
-    if (offset <= b.size() && size <= b.size() - offset) store_u32(e + 40, crc32c(&b[offset], size));
-  }
-  uint32_t crc = crc32c(b.data(), kHeaderCrcOffset);
-  crc = crc32c(b.data() + kHeaderSize, table_end - kHeaderSize, crc);
-  store_u32(&b[kHeaderCrcOffset], crc);
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   std::vector<unsigned char> file(data + 1, data + size);
-  if (data[0] & 1) repair_checksums(file);
+  if (data[0] & 1) geom_fuzz::repair_checksums(file);
   geom::baked::Reader reader;
   const bool ok = reader.open(file.data(), file.size());
   if (!ok) {

@@ -6,7 +6,7 @@
 # GEOM_TEST_DATA, Debian's assimp-testmodels, openscad-testing-data,
 # openarena-081-maps/-players), runs it for SECONDS, and prints the execution
 # count, the corpus size and the findings. TARGET: gltf draco obj ply off stl
-# bsp md3 baked (fuzz/fuzz_TARGET.cpp). The corpus grows across runs in
+# bsp md3 baked viewer_file (fuzz/fuzz_TARGET.cpp). The corpus grows across runs in
 # build-fuzz/corpus/TARGET; a crashing input is saved in build-fuzz/artifacts/TARGET/
 # and the exit status is non-zero. JOBS=N sets the build's parallelism (default 2);
 # SKIP_BUILD=1 uses the targets as built (fuzz/run_all.sh builds them once).
@@ -30,7 +30,7 @@ if [ ! -f "$build/build.ninja" ]; then
     -DGEOM_BUILD_TESTS=OFF -DGEOM_BUILD_BENCH=OFF -DGEOM_BUILD_VIEWER=OFF >/dev/null
 fi
 targets=("fuzz_$target")
-[ "$target" = baked ] && targets+=(geombake)
+[ "$target" = baked ] || [ "$target" = viewer_file ] && targets+=(geombake)
 [ -n "${SKIP_BUILD:-}" ] || cmake --build "$build" -j"${JOBS:-2}" --target "${targets[@]}"
 
 # Seeds: real files of the target's format, at most 1 MB each (large inputs slow every execution).
@@ -65,7 +65,7 @@ case $target in
         unzip -p "$pk3" "$m" >"$seeds/$(echo "$m" | tr / _)"
       done
     fi ;;
-  baked)  # containers baked here from small real files of every format, after the mode byte
+  baked | viewer_file)  # containers baked here from small real files of every format, after the mode byte
     for f in "$data"/draco/{cube_att.obj,test_nm.obj,Box.ply,deg_faces.obj,non_manifold_wrap.obj} \
              "$data"/draco/Box/glTF_Binary/Box_Draco.glb "$assimp"/OFF/Wuson.off "$assimp"/STL/Spider_ascii.stl \
              /usr/share/games/openarena/baseoa/pak2-players.pk3:models/players/gargoyle/head_2.md3; do
@@ -74,7 +74,8 @@ case $target in
       { printf '\0'; cat "$g"; } >"$seeds/0_$(basename "$g")"   # mode 0: read as it is
       { printf '\1'; cat "$g"; } >"$seeds/1_$(basename "$g")"   # mode 1: checksums repaired
       rm -f "$g"
-    done ;;
+    done
+    [ "$target" = viewer_file ] && cp "$root"/tests/fuzz_regressions/viewer/* "$seeds"/ ;;
 esac
 [ -n "$(ls -A "$seeds")" ] || { echo "Error: no seed files found for $target (install the Debian test-data packages: bash scripts/setup.sh)" >&2; exit 2; }
 

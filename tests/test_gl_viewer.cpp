@@ -1,4 +1,4 @@
-// geomview as a graphics programmer uses it (issue 13), end to end through
+// geomview as a graphics programmer uses it, end to end through
 // the binary: the --compare grid is the techniques' own images side by side
 // with their labels; the HUD's figures are the CLI's and equal an error
 // computed here from the mask and the ray-cast reference; the inspection
@@ -130,7 +130,7 @@ TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
   EXPECT_EQ(all.lines("hud: ").size(), 4 * n);
   // 2 to 16 panels.
   const ViewerRun one = geomview(s, obj + " --compare ssm -o " + (s / "x.png"));
-  EXPECT_EQ(one.exit_code, 1);
+  EXPECT_EQ(one.exit_code, 2);  // bad usage (cli::kExitUsage)
   EXPECT_NE(one.err.find("2 to 16"), std::string::npos) << one.err;
 }
 

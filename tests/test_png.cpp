@@ -4,8 +4,10 @@
 // inconsistent images and unreadable or non-PNG files are refused with an
 // error naming the file, and a refused write leaves no file.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -89,3 +91,33 @@ TEST(Png, BadImagesAndFilesAreRefusedNamingTheFile) {
 }
 
 }  // namespace
+
+// Writes are checked to the end, as geombake's are: a device that fails every
+// write (/dev/full) and a full disk (a file size limit, SIGXFSZ ignored, so the
+// writes fail with EFBIG) give an error naming the file, and leave neither a
+// truncated PNG nor a temporary file; a FIFO or a device is never a target.
+TEST(Png, FailedWritesAreReportedAndLeaveNothing) {
+  Scratch t;
+  std::mt19937 rng(4);
+  geom::PngImage noise;  // incompressible: its PNG is about 200 KB
+  noise.width = 256, noise.height = 256, noise.channels = 3;
+  for (int i = 0; i < 256 * 256 * 3; ++i) noise.pixels.push_back(uint8_t(rng()));
+  std::string error;
+  EXPECT_FALSE(geom::write_png("/dev/full", noise, error));
+  EXPECT_NE(error.find("/dev/full"), std::string::npos) << error;
+
+  const std::string path = (t.dir / "full.png").string();
+  struct rlimit old {};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  void (*old_handler)(int) = std::signal(SIGXFSZ, SIG_IGN);
+  struct rlimit small = old;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const bool written = geom::write_png(path, noise, error);
+  ::setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_FALSE(written);
+  EXPECT_NE(error.find("full.png"), std::string::npos) << error;
+  for (const auto& e : std::filesystem::directory_iterator(t.dir)) ADD_FAILURE() << "left behind: " << e.path();
+  EXPECT_TRUE(geom::write_png(path, noise, error)) << error;  // without the limit it is written
+}

@@ -4,6 +4,7 @@
 
 #include "app.h"
 #include "cli/args.h"
+#include "cli/output.h"
 #include "compare.h"
 #include "ui.h"
 
@@ -20,8 +21,11 @@ int run_compare(Options& o, Session& s) {
   if (!render_grid(*s.state, s.scene, o.compare, o.view, o.light, o.settings, true, grid, error)) return fail(error);
   for (const Figures& f : grid.figures) print_lines(hud_lines(f, false));
   if (!draw_labels(grid.image, grid.labels, error)) return fail(error);
-  if (!geom::write_png(o.out_path, grid.image, error)) return fail(error);
-  return 0;
+  std::string png;
+  cli::OutputSet out;
+  if (!geom::encode_png(grid.image, png, error)) return fail(o.out_path + ": " + error);
+  out.add(o.out_path, std::move(png));
+  return out.commit(error) ? 0 : fail(error);
 }
 
 }  // namespace
@@ -29,11 +33,7 @@ int run_compare(Options& o, Session& s) {
 int run_headless(Options& o, Session& s) {
   if (!o.compare.empty()) return run_compare(o, s);
   const bool several = o.techniques.size() > 1;
-  if (several) {
-    std::error_code ec;
-    std::filesystem::create_directories(o.out_path, ec);
-    if (ec) return fail(o.out_path + ": cannot create the folder (" + ec.message() + ")");
-  }
+  cli::OutputSet out;  // written together at the end: a failed technique leaves no file and no folder
   std::string error;
   if (o.frames > 1) std::printf("# pass times: %s\n", render::timing_kind(*s.state).c_str());
   Reference ref;
@@ -85,9 +85,11 @@ int run_headless(Options& o, Session& s) {
                     (unsigned long long)k.boundary_edges, (unsigned long long)k.non_manifold_edges,
                     (unsigned long long)k.inconsistent_edges, (unsigned long long)k.degenerate_faces);
     const std::string path = several ? o.out_path + "/" + render::technique_name(t) + ".png" : o.out_path;
-    if (!geom::write_png(path, image, error)) return fail(error);
+    std::string png;
+    if (!geom::encode_png(image, png, error)) return fail(path + ": " + error);
+    out.add(path, std::move(png));
   }
-  return 0;
+  return out.commit(error) ? 0 : fail(error);
 }
 
 }  // namespace viewer

@@ -7,10 +7,14 @@
 // window.cpp (the window app), compare.* (the grid), figures.* (pass times,
 // error, the HUD's lines), ui.* (everything ImGui).
 #include <cstdio>
+#include <new>
+#include <stdexcept>
 
 #include "app.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   viewer::Options options;
   if (const int code = viewer::parse_options(argc, argv, options); code >= 0) return code;
   viewer::Session session;
@@ -19,4 +23,18 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "geomview: %s, %s (%zu triangles), shaders from %s\n", session.platform->description().c_str(),
                render::renderer_name(*session.state).c_str(), session.scene.triangle_count(), options.shaders.c_str());
   return session.platform->has_window() ? viewer::run_window(options, session) : viewer::run_headless(options, session);
+}
+
+}  // namespace
+
+// A failed allocation (a size the estimate let through, a driver's own) ends
+// the run with an Error: line and exit 1, as any other failure.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    return viewer::fail("out of memory (std::bad_alloc): a smaller --size, --shadow-map-size or input");
+  } catch (const std::length_error& e) {
+    return viewer::fail(std::string("out of memory (") + e.what() + ")");
+  }
 }

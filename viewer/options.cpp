@@ -15,6 +15,8 @@
 
 #include "cli/args.h"
 #include "cli/file.h"
+#include "cli/output.h"
+#include "cli/view_check.h"
 #include "geom/baked_reader.h"
 #include "geom/import.h"
 
@@ -66,14 +68,15 @@ bool parse_floats(const std::string& text, float* out, int n) {
   return true;
 }
 
-glm::vec3 vec3(const float v[3]) { return glm::vec3(v[0], v[1], v[2]); }
-
-// "a,b" or "all" into techniques; false with `error`.
-bool parse_techniques(const std::vector<std::string>& lists, std::vector<render::Technique>& out, std::string& error) {
+// "a,b" or "all" into techniques; false with `error` (naming `flag`) on an
+// unknown or empty name.
+bool parse_techniques(const char* flag, const std::vector<std::string>& lists, std::vector<render::Technique>& out,
+                      std::string& error) {
   for (const std::string& list : lists) {
-    std::stringstream ss(list);
-    std::string name;
-    while (std::getline(ss, name, ',')) {
+    std::vector<std::string> names;
+    if (!cli::parse_list(list, names))
+      return error = std::string(flag) + ": '" + list + "' is not a comma-separated list of technique names", false;
+    for (const std::string& name : names) {
       if (name == "all") {
         for (auto t : render::available_techniques()) out.push_back(t);
         continue;
@@ -82,7 +85,7 @@ bool parse_techniques(const std::vector<std::string>& lists, std::vector<render:
       if (!render::parse_technique(name, t)) {
         std::string known;
         for (auto a : render::available_techniques()) known += std::string(" ") + render::technique_name(a);
-        error = "unknown technique '" + name + "' (this build has:" + known + ")";
+        error = std::string(flag) + ": unknown technique '" + name + "' (this build has:" + known + ")";
         return false;
       }
       out.push_back(t);
@@ -130,6 +133,75 @@ int format_up_axis(const std::string& path) {
   return ext == ".bsp" || ext == ".md3" ? 2 : 1;
 }
 
+namespace {
+
+// The numbers and names of the command line, each strictly (cli/args.h): the
+// flag is named in the error, and nothing out of range is wrapped or clamped.
+bool parse_values(const cli::Args& args, Options& o, std::string& error) {
+  o.settings.inspect = args.has("--inspect");
+  const std::string output = args.get("--output", "color");
+  if (output != "color" && output != "mask")
+    return error = "--output must be color or mask, not '" + output + "'", false;
+  o.settings.output = output == "mask" ? render::Output::Mask : render::Output::Color;
+  double radius = 0;
+  if (!cli::int_option(args, "--shadow-map-size", kMinMapSize, kMaxMapSize, o.settings.shadow_map_size, error) ||
+      !cli::real_option(args, "--light-radius", 0, 1e6, radius, error) ||
+      !cli::int_option(args, "--frames", 1, 100000, o.frames, error))
+    return false;
+  o.settings.light_radius = float(radius);
+  o.view.width = 640, o.view.height = 480;
+  if (!o.compare.empty()) o.view.width = 400, o.view.height = 300;
+  if (!cli::size_option(args, "--size", 1, kMaxImageSize, o.view.width, o.view.height, error)) return false;
+  o.size_given = args.has("--size");
+  if (args.has("--up-axis")) {
+    const std::string a = args.get("--up-axis");
+    if (a != "x" && a != "y" && a != "z") return error = "--up-axis must be x, y or z, not '" + a + "'", false;
+    o.up_axis = a[0] - 'x';
+  }
+  const char* camera_names[6] = {"--eye", "--target", "--up", "--fovy", "--near", "--far"};
+  for (int k = 0; k < 6; ++k)
+    if (args.has(camera_names[k])) o.camera_flags[k].push_back(args.get(camera_names[k]));
+  o.light_flag = args.has("--light") ? args.get("--light") : "";
+  o.spot_flag = args.has("--spot") ? args.get("--spot") : "";
+  if ((args.has("--light") && o.light_flag.empty()) || (args.has("--spot") && o.spot_flag.empty()))
+    return error = std::string(o.light_flag.empty() && args.has("--light") ? "--light" : "--spot") + ": empty value",
+           false;
+  return true;
+}
+
+// The techniques (--technique, --compare), the output and the window.
+bool parse_modes(const cli::Args& args, Options& o, std::string& error) {
+  if (args.has("--technique") && !parse_techniques("--technique", args.all("--technique"), o.techniques, error))
+    return false;
+  if (o.techniques.empty()) o.techniques.push_back(render::Technique::Pcf);
+  if (args.has("--compare")) {
+    if (!parse_techniques("--compare", args.all("--compare"), o.compare, error)) return false;
+    if (o.compare.size() < 2 || o.compare.size() > 16)
+      return error = "--compare takes 2 to 16 techniques, not " + std::to_string(o.compare.size()), false;
+  }
+  o.hud = args.has("--hud");
+  o.error = args.has("--error");
+  o.out_path = args.get("-o");
+  o.script = args.get("--script");
+  o.screenshot = args.get("--screenshot");
+  for (const char* name : {"-o", "--script", "--screenshot", "--shaders"})
+    if (args.has(name) && args.get(name).empty()) return error = std::string(name) + ": empty value", false;
+  o.shaders = find_shaders(args.get("--shaders"));
+  o.window = args.has("--window") || (o.out_path.empty() && std::getenv("DISPLAY"));
+  if (!o.window && o.out_path.empty())
+    return error = "no display: give -o FILE.png (or run under xvfb-run with --window)", false;
+  if (!o.out_path.empty() && !cli::check_output_path(o.out_path, o.compare.empty() && o.techniques.size() > 1, error))
+    return false;
+  if (!o.screenshot.empty() && !cli::check_output_path(o.screenshot, false, error)) return false;
+  if (!o.window && (args.has("--script") || args.has("--screenshot")))
+    return error = std::string(args.has("--script") ? "--script" : "--screenshot") +
+                   " needs a window (--window, and a display); headless runs write -o FILE.png",
+           false;
+  return true;
+}
+
+}  // namespace
+
 int parse_options(int argc, char** argv, Options& o) {
   cli::Args args(std::vector<std::string>(argv + 1, argv + argc),
                  {"--help", "-h", "--inspect", "--window", "--hud", "--error"}, {"--technique",
@@ -157,77 +229,53 @@ int parse_options(int argc, char** argv, Options& o) {
     std::printf(kUsage, technique_names().c_str(), default_shaders().c_str());
     return 0;
   }
-  if (args.positional().size() > 1) return fail("one input file at most");
+  if (args.positional().size() > 1) return fail("one input file at most"), cli::kExitUsage;
   o.file = !args.positional().empty() ? args.positional()[0]
                                       : beside_binary("default_scene.gltf");
   std::string error;
-  if (!parse_techniques(args.all("--technique"), o.techniques, error)) return fail(error);
-  if (o.techniques.empty()) o.techniques.push_back(render::Technique::Pcf);
-  if (args.has("--compare")) {
-    if (!parse_techniques(args.all("--compare"), o.compare, error)) return fail(error);
-    if (o.compare.size() < 2 || o.compare.size() > 16)
-      return fail("--compare takes 2 to 16 techniques, not " + std::to_string(o.compare.size()));
-  }
-  o.settings.inspect = args.has("--inspect");
-  const std::string output = args.get("--output", "color");
-  if (output != "color" && output != "mask") return fail("--output must be color or mask, not '" + output + "'");
-  o.settings.output = output == "mask" ? render::Output::Mask : render::Output::Color;
-  o.settings.shadow_map_size = std::atoi(args.get("--shadow-map-size", "1024").c_str());
-  o.settings.light_radius = float(std::atof(args.get("--light-radius", "0").c_str()));
-  if (!(o.settings.light_radius >= 0) || o.settings.light_radius > 1e6) return fail("--light-radius must be >= 0");
-  if (o.settings.shadow_map_size < 16 || o.settings.shadow_map_size > 16384)
-    return fail("--shadow-map-size must be within 16..16384");
-  o.frames = std::atoi(args.get("--frames", "1").c_str());
-  if (o.frames < 1 || o.frames > 100000) return fail("--frames must be within 1..100000");
-  o.view.width = 640, o.view.height = 480;
-  if (!o.compare.empty()) o.view.width = 400, o.view.height = 300;
-  if (args.has("--size")) {
-    const std::string s = args.get("--size");
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 1 || h < 1 || w > 16384 ||
-        h > 16384)
-      return fail("--size must be WxH within 1..16384, not '" + s + "'");
-    o.view.width = w, o.view.height = h, o.size_given = true;
-  }
-  if (args.has("--up-axis")) {
-    const std::string a = args.get("--up-axis");
-    if (a != "x" && a != "y" && a != "z") return fail("--up-axis must be x, y or z, not '" + a + "'");
-    o.up_axis = a[0] - 'x';
-  }
-  const char* camera_names[6] = {"--eye", "--target", "--up", "--fovy", "--near", "--far"};
-  for (int k = 0; k < 6; ++k)
-    if (args.has(camera_names[k])) o.camera_flags[k].push_back(args.get(camera_names[k]));
-  o.light_flag = args.get("--light");
-  o.spot_flag = args.get("--spot");
-  o.hud = args.has("--hud");
-  o.error = args.has("--error");
-  o.out_path = args.get("-o");
-  o.script = args.get("--script");
-  o.screenshot = args.get("--screenshot");
-  o.shaders = find_shaders(args.get("--shaders"));
-  o.window = args.has("--window") || (o.out_path.empty() && std::getenv("DISPLAY"));
-  if (!o.window && o.out_path.empty())
-    return fail("no display: give -o FILE.png (or run under xvfb-run with --window)");
+  if (!parse_modes(args, o, error) || !parse_values(args, o, error)) return fail(error), cli::kExitUsage;
   return -1;
 }
 
 namespace {
 
+// The bytes of a baked file are read only after its header's size matched the
+// file (geom/baked_reader.h) and fits the memory this process may take.
+uint64_t baked_size_limit() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  const uint64_t memory = pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : uint64_t(1) << 32;
+  return std::min<uint64_t>(memory / 4, uint64_t(1) << 34);  // the file, its GL copy and the scene's copy fit
+}
+
+// Every coordinate of an imported scene within the limit of the float pipeline.
+bool check_positions(const std::string& file, const geom::Scene& scene, std::string& error) {
+  for (size_t i = 0; i < scene.positions.size(); ++i)
+    if (!(std::fabs(scene.positions[i]) <= cli::kMaxCoordinate))
+      return error = file + ": vertex " + std::to_string(i / 3) + ": coordinate " + std::to_string(scene.positions[i]) +
+                     " is not a finite number within +-1e15",
+             false;
+  return true;
+}
+
 bool read_input(const std::string& file, std::vector<unsigned char>& baked, geom::Scene& scene, std::string& error) {
   std::vector<unsigned char> magic;
-  std::string unread;
-  if (cli::read_file(file, magic, unread, 8) && magic.size() == 8 &&
+  std::string problem;
+  // Not a readable regular file (an archive member "PAK:NAME", a FIFO, a
+  // device): the importer opens it, or refuses it, by its own rules.
+  if (cli::read_file(file, magic, problem, 8) && magic.size() == 8 &&
       std::memcmp(magic.data(), geom::baked::kMagic, 8) == 0) {
-    if (!cli::read_file(file, baked, unread) || baked.empty())
-      return error = file + ": cannot read the baked file", false;
+    if (!geom::baked::read_baked_file(file, baked, problem, baked_size_limit()))
+      return error = file + ": " + problem, false;
+    geom::baked::Reader reader;
+    if (!reader.open(baked.data(), baked.size())) return error = file + ": " + reader.error(), false;
+    if (!geom::baked::validate_floats(reader, problem)) return error = file + ": " + problem, false;
     return true;
   }
   geom::ImportResult imported = geom::import_file(file);
   if (!imported.ok) return error = imported.error, false;
   for (const std::string& w : imported.scene.warnings) cli::warning("%s", w.c_str());
   scene = std::move(imported.scene);
-  return true;
+  return check_positions(file, scene, error);
 }
 
 bool resolve_camera(const Options& o, geom::Camera& view, std::string& error) {
@@ -237,28 +285,25 @@ bool resolve_camera(const Options& o, geom::Camera& view, std::string& error) {
   for (int k = 0; k < 6; ++k)
     for (const std::string& v : o.camera_flags[k])
       if (!parse_floats(v, k < 3 ? vectors[k] : scalars[k - 3], k < 3 ? 3 : 1))
-        return error = std::string(names[k]) + (k < 3 ? " needs X,Y,Z" : " needs a number"), false;
-  if (!(view.fovy_deg > 0 && view.fovy_deg < 180)) return error = "--fovy must be within (0, 180) degrees", false;
-  if (!(view.near_plane > 0 && view.far_plane > view.near_plane)) return error = "need 0 < --near < --far", false;
-  if (glm::length(vec3(view.target) - vec3(view.eye)) == 0 ||
-      glm::length(glm::cross(vec3(view.target) - vec3(view.eye), vec3(view.up))) == 0)
-    return error = "--eye, --target and --up must span a view (eye != target, up not along the view)", false;
-  return true;
+        return error = std::string(names[k]) + (k < 3 ? " needs X,Y,Z" : " needs a number") + ", not '" + v + "'",
+               false;
+  return cli::check_camera(view, "the camera (--eye --target --up --fovy --near --far)", error);
 }
 
 bool resolve_light(const Options& o, const geom::Scene& scene, geom::Light& light, std::string& error) {
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (!cli::check_light(scene.lights[i], o.file + ": light " + std::to_string(i), error)) return false;
   light = geom::light_from_scene(scene.lights);
   if (!o.light_flag.empty()) {
     float v[4];
     if (!parse_floats(o.light_flag, v, 4) || (v[3] != 0 && v[3] != 1))
       return error = "--light needs X,Y,Z,W with W = 1 (point) or 0 (directional)", false;
-    if (v[3] == 0 && glm::length(glm::vec3(v[0], v[1], v[2])) == 0) return error = "--light direction is zero", false;
     const double h[4] = {v[0], v[1], v[2], v[3]};
     light = geom::light_from_homogeneous(h);
   }
   if (!o.spot_flag.empty()) {
     float v[4];
-    if (!parse_floats(o.spot_flag, v, 4) || !(v[3] > 0 && v[3] < 90) || glm::length(glm::vec3(v[0], v[1], v[2])) == 0)
+    if (!parse_floats(o.spot_flag, v, 4) || !(v[3] > 0 && v[3] < 90))
       return error = "--spot needs DX,DY,DZ,DEG with a non-zero direction and 0 < DEG < 90", false;
     if (light.type == geom::LightType::Directional)
       return error = "--spot needs a point light position (--light X,Y,Z,1)", false;
@@ -266,7 +311,10 @@ bool resolve_light(const Options& o, const geom::Scene& scene, geom::Light& ligh
     for (int k = 0; k < 3; ++k) light.direction[k] = v[k];
     light.outer_cone = glm::radians(double(v[3]));
   }
-  return true;
+  const std::string source = !o.spot_flag.empty()    ? "--light, --spot"
+                             : !o.light_flag.empty() ? "--light"
+                                                     : o.file + ": the scene's light";
+  return cli::check_light(light, source, error);
 }
 
 }  // namespace
@@ -278,9 +326,17 @@ bool open_session(Options& o, Session& s, std::string& error) {
   s.platform = render::Platform::open(o.window, o.view.width, o.view.height, "geomview " + o.file, note, error);
   if (!s.platform) return false;
   if (!note.empty()) cli::warning("%s", note.c_str());
+  if (!s.platform->has_window() && (!o.script.empty() || !o.screenshot.empty()))
+    return error = std::string(o.script.empty() ? "--screenshot" : "--script") +
+                   " needs a window, and none could open" + (note.empty() ? "" : " (" + note + ")"),
+           false;
+  if (!s.platform->has_window() && o.out_path.empty())
+    return error = "no window could open" + (note.empty() ? "" : " (" + note + ")") + ": give -o FILE.png", false;
+  if (!check_resources(o, error)) return false;
   s.state = baked.empty() ? render::create_state(s.scene, o.shaders, error)
                           : render::create_state_baked(baked.data(), baked.size(), o.shaders, s.scene, error);
   if (!s.state) return error = o.file + ": " + error, false;
+  if (const std::string gl = render::gl_error_text(); !gl.empty()) return error = o.file + ": " + gl, false;
   s.up_axis = o.up_axis >= 0 ? o.up_axis : format_up_axis(o.file);
   o.view = framed_view(s, o.view.width, o.view.height);
   if (!resolve_camera(o, o.view, error)) return false;

@@ -12,6 +12,10 @@
 
 namespace viewer {
 
+// The flags' ranges; what the GL context can hold is checked again once it is
+// open (GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE, GL_MAX_VIEWPORT_DIMS).
+constexpr int kMinMapSize = 16, kMaxMapSize = 16384, kMaxImageSize = 16384;
+
 struct Options {
   std::string file;                           // the input (the bundled default scene when absent)
   std::vector<render::Technique> techniques;  // --technique (pcf when absent)
@@ -56,6 +60,11 @@ struct Session {
 // Loads the input, opens the context (a window when o.window), creates the
 // state, frames the camera and resolves the light. Error: message, false.
 bool open_session(Options& o, Session& s, std::string& error);
+
+// Checks, once the context is open, the image (or grid) and shadow-map sizes
+// against its limits and the memory the run needs against this machine's
+// (cli/memory.h). Error: message, false.
+bool check_resources(const Options& o, std::string& error);
 
 // The default framing of the current scene (the reset key).
 geom::Camera framed_view(const Session& s, int width, int height);

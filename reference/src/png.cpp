@@ -1,6 +1,6 @@
 // PNG writer and reader over stb_image / stb_image_write, compiled here with
 // static linkage (STB_*_STATIC): no stbi_* symbol is global, so neither
-// libgeom's own copy (libgeom/third_party) nor libdraco's (TOOLCHAIN.md) is bound to.
+// libgeom's own copy (libgeom/third_party) nor libdraco's (libdraco.so exports its own older stb) is bound to.
 #include "geom/png.h"
 
 #define STB_IMAGE_IMPLEMENTATION
@@ -19,18 +19,39 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include <cstdint>
+
+#include "geom/atomic_file.h"
+
 namespace geom {
 
-bool write_png(const std::string& path, const PngImage& image, std::string& error) {
+bool encode_png(const PngImage& image, std::string& bytes, std::string& error) {
   if (image.width <= 0 || image.height <= 0 || image.channels < 1 || image.channels > 4 ||
-      image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels)) {
-    error = path + ": inconsistent image (" + std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
+      image.pixels.size() != size_t(image.width) * size_t(image.height) * size_t(image.channels) ||
+      size_t(image.width) * size_t(image.channels) > size_t(INT32_MAX)) {
+    error = "inconsistent image (" + std::to_string(image.width) + "x" + std::to_string(image.height) + "x" +
             std::to_string(image.channels) + ", " + std::to_string(image.pixels.size()) + " bytes)";
     return false;
   }
-  if (!stbi_write_png(path.c_str(), image.width, image.height, image.channels, image.pixels.data(),
-                      image.width * image.channels)) {
-    error = path + ": cannot write the PNG file";
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, image.channels, image.pixels.data(),
+                              image.width * image.channels)) {
+    error = "cannot encode the PNG image";
+    return false;
+  }
+  return true;
+}
+
+bool write_png(const std::string& path, const PngImage& image, std::string& error) {
+  std::string bytes, problem;
+  if (!encode_png(image, bytes, problem)) {
+    error = path + ": " + problem;
+    return false;
+  }
+  if (!write_file_atomically(path, bytes, problem)) {
+    error = problem.rfind(path, 0) == 0 ? problem : path + ": " + problem;
     return false;
   }
   return true;

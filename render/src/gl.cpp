@@ -1,11 +1,20 @@
 // gl.cpp: the GL helpers of gl.h.
 #include "gl.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <sstream>
+
+#include "render/platform.h"
 
 namespace render {
 
@@ -16,6 +25,31 @@ void delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
 void delete_program(GLuint id) { glDeleteProgram(id); }
 void delete_query(GLuint id) { glDeleteQueries(1, &id); }
 void delete_sampler(GLuint id) { glDeleteSamplers(1, &id); }
+
+int GlLimits::max_image_width() const { return std::min({max_texture, max_renderbuffer, max_viewport[0]}); }
+int GlLimits::max_image_height() const { return std::min({max_texture, max_renderbuffer, max_viewport[1]}); }
+
+GlLimits gl_limits() {
+  GlLimits l;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &l.max_texture);
+  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &l.max_cube_map);
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &l.max_renderbuffer);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, l.max_viewport);
+  return l;
+}
+
+std::string gl_error_text() {
+  std::string text;
+  for (int n = 0; n < 16; ++n) {  // a context that lost itself reports errors forever
+    const GLenum e = glGetError();
+    if (e == GL_NO_ERROR) break;
+    char b[96];
+    std::snprintf(b, sizeof b, "%sOpenGL error 0x%x%s", text.empty() ? "" : ", ", e,
+                  e == GL_OUT_OF_MEMORY ? " (GL_OUT_OF_MEMORY: out of GPU memory)" : "");
+    text += b;
+  }
+  return text;
+}
 
 void label(GLenum kind, GLuint id, const std::string& name) { glObjectLabel(kind, id, -1, name.c_str()); }
 
@@ -52,13 +86,38 @@ void PassTimer::collect() {
 
 namespace {
 
-bool read_text(const std::string& path, std::string& text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  text = ss.str();
-  return true;
+// A shader file as geombake opens its inputs: a regular file only (a FIFO, a
+// device or a directory is refused before a byte is read, so nothing blocks or
+// reads forever), at most kMaxShaderBytes, every read checked.
+constexpr uint64_t kMaxShaderBytes = uint64_t(1) << 24;
+
+bool read_text(const std::string& path, std::string& text, std::string& problem) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) return problem = std::string("cannot open the shader (") + std::strerror(errno) + ")", false;
+  struct stat st {};
+  bool ok = ::fstat(fd, &st) == 0;
+  if (!ok)
+    problem = "cannot read the shader";
+  else if (!S_ISREG(st.st_mode))
+    ok = false, problem = "not a regular file (a directory, FIFO or device): not read";
+  else if (uint64_t(st.st_size) > kMaxShaderBytes)
+    ok = false, problem = "the shader is " + std::to_string(st.st_size) + " bytes, over the limit of " +
+                          std::to_string(kMaxShaderBytes);
+  if (ok) {
+    text.assign(size_t(st.st_size), '\0');
+    size_t got = 0;
+    while (got < text.size()) {
+      const ssize_t n = ::read(fd, &text[got], text.size() - got);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      got += size_t(n);
+    }
+    char extra;
+    if (got != text.size() || ::read(fd, &extra, 1) != 0)
+      ok = false, problem = "cannot read the shader (its size changed)";
+  }
+  ::close(fd);
+  return ok;
 }
 
 }  // namespace
@@ -74,9 +133,9 @@ GLuint program(Programs& programs, const std::vector<std::string>& files, std::s
   std::vector<GLuint> shaders;
   bool ok = true;
   for (auto& f : files) {
-    std::string text;
-    if (!read_text(dir + "/" + f, text)) {
-      error = dir + "/" + f + ": cannot read the shader";
+    std::string text, problem;
+    if (!read_text(dir + "/" + f, text, problem)) {
+      error = dir + "/" + f + ": " + problem;
       ok = false;
       break;
     }

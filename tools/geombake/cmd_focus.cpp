@@ -10,7 +10,12 @@
 //    "method": "psm" | "lispsm" | "uniform",             (optional, default psm)
 //    "cube_cone_degrees": 120,                           (optional: six faces for a point light wider than this)
 //    "min_warp_gain": 0.75}                              (optional: FocusOptions::min_warp_gain)
-// Bad JSON, a missing key or an invalid frame: `Error: FILE: ...`, exit 1.
+// Bad JSON, anything after the JSON value (a NUL byte included), a missing key
+// or an invalid frame (outside the limits of cli/view_check.h: coordinates
+// within 1e15, fovy within 0.001..179.9 degrees, aspect within 1e-5..1e5):
+// `Error: FILE: ...`, exit 1. Every matrix printed is finite and not singular:
+// where the method's is not, the uniform one is, with fallback_kind
+// "unusable_matrix"; where neither is, the frame is an error.
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -20,6 +25,7 @@
 
 #include "cli/args.h"
 #include "cli/file.h"
+#include "cli/view_check.h"
 #include "geom/focus.h"
 #include "geombake/command.h"
 
@@ -67,7 +73,48 @@ geom::FocusBox box(const Json& obj, const char* parent) {
   geom::FocusBox b;
   vec3(obj, parent, "min", b.min);
   vec3(obj, parent, "max", b.max);
+  for (int k = 0; k < 3; ++k)
+    if (std::fabs(b.min[k]) > cli::kMaxCoordinate || std::fabs(b.max[k]) > cli::kMaxCoordinate)
+      throw BadFrame(std::string(parent) + ": a coordinate is over the limit of +-1e15");
   return b;
+}
+
+// The frame's text: JSON and nothing else. nlohmann's parser stops at a NUL
+// byte as at the end of the input, so a NUL (and whatever follows it) is
+// refused here; anything else after the value is refused by the parser.
+void check_frame_text(const std::string& text) {
+  const size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw BadFrame("a NUL byte at offset " + std::to_string(nul) + ": a frame is JSON text and nothing after it");
+}
+
+// A matrix a shadow pass can use: every entry finite and not singular (its
+// determinant not below 1e-12 of the product of its column lengths, the
+// largest it can be: Hadamard's bound).
+bool usable_matrix(const double m[16]) {
+  double bound = 1;
+  for (int c = 0; c < 4; ++c) {
+    double l = 0;
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(m[4 * c + r])) return false;
+      l += m[4 * c + r] * m[4 * c + r];
+    }
+    bound *= std::sqrt(l);
+  }
+  auto at = [&](int r, int c) { return m[4 * c + r]; };
+  double det = 0;
+  for (int c = 0; c < 4; ++c) {  // Laplace along the first row
+    double minor[9];
+    int k = 0;
+    for (int r = 1; r < 4; ++r)
+      for (int cc = 0; cc < 4; ++cc)
+        if (cc != c) minor[k++] = at(r, cc);
+    const double d3 = minor[0] * (minor[4] * minor[8] - minor[5] * minor[7]) -
+                      minor[1] * (minor[3] * minor[8] - minor[5] * minor[6]) +
+                      minor[2] * (minor[3] * minor[7] - minor[4] * minor[6]);
+    det += (c % 2 ? -1 : 1) * at(0, c) * d3;
+  }
+  return std::isfinite(det) && bound > 0 && std::fabs(det) > 1e-12 * bound;
 }
 
 int run_focus(const std::vector<std::string>& argv) {
@@ -88,7 +135,8 @@ int run_focus(const std::vector<std::string>& argv) {
     return 1;
   }
   try {
-    Json frame = Json::parse(text);  // throws on bad JSON
+    check_frame_text(text);
+    Json frame = Json::parse(text);  // throws on bad JSON and on anything after the value
     const Json& cam = member(frame, "frame", "camera");
     double eye[3], target[3], up[3];
     vec3(cam, "camera", "eye", eye);
@@ -97,13 +145,9 @@ int run_focus(const std::vector<std::string>& argv) {
     double fovy = number(cam, "camera", "fovy_degrees"), aspect = number(cam, "camera", "aspect");
     double near_d = number(cam, "camera", "near");
     double far_d = member(cam, "camera", "far").is_null() ? HUGE_VAL : number(cam, "camera", "far");
-    if (!(fovy > 0 && fovy < 180)) throw BadFrame("camera.fovy_degrees: must lie in (0, 180)");
-    if (!(aspect > 0)) throw BadFrame("camera.aspect: must be positive");
-    if (!(near_d > 0 && far_d > near_d)) throw BadFrame("camera.near, camera.far: need 0 < near < far");
-    double f[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
-    double c[3] = {f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]};
-    if (f[0] == 0 && f[1] == 0 && f[2] == 0) throw BadFrame("camera.target: equals camera.eye");
-    if (c[0] == 0 && c[1] == 0 && c[2] == 0) throw BadFrame("camera.up: parallel to the view direction (or zero)");
+    std::string problem;  // the limits of every program's cameras (cli/view_check.h)
+    if (!cli::check_view({eye, target, up, fovy, aspect, near_d, far_d, true, false}, "camera", problem))
+      throw BadFrame(problem);
 
     const Json& lj = member(frame, "frame", "light");
     geom::Light light;
@@ -126,6 +170,7 @@ int run_focus(const std::vector<std::string>& argv) {
     } else {
       throw BadFrame("light.type: expected \"directional\", \"point\" or \"spot\"");
     }
+    if (!cli::check_light(light, "light", problem)) throw BadFrame(problem);
     geom::FocusBox scene = box(member(frame, "frame", "scene_bounds"), "scene_bounds");
     geom::FocusOptions options;
     geom::FocusBox receivers;
@@ -160,6 +205,18 @@ int run_focus(const std::vector<std::string>& argv) {
     geom::FocusResult r;
     if (!geom::compute_focus(camera, light, scene, options, r))
       throw BadFrame(std::string("invalid frame: ") + r.reason);
+    // The matrix a frame gives must be usable; where the method's is not, the
+    // uniform matrix of the same frame is (fallback_kind "unusable_matrix");
+    // where that is not either, the frame is an error.
+    const char* fallback_kind = geom::focus_fallback_name(r.fallback);
+    if (!usable_matrix(r.matrix)) {
+      geom::FocusOptions uniform = options;
+      uniform.method = geom::FocusMethod::Uniform;
+      if (!geom::compute_focus(camera, light, scene, uniform, r) || !usable_matrix(r.matrix))
+        throw BadFrame("no usable shadow matrix for this frame (not finite or singular, uniform too)");
+      r.reason = "the method's matrix was not finite or singular: uniform used";
+      fallback_kind = "unusable_matrix";
+    }
 
     // Compact output: one key per line, number arrays on one line.
     auto num = [](double v) {
@@ -172,8 +229,8 @@ int run_focus(const std::vector<std::string>& argv) {
     std::string o = "{\n";
     o += "  \"method\": " + str(geom::focus_method_name(r.method)) + ",\n";
     o += "  \"requested_method\": " + str(geom::focus_method_name(options.method)) + ",\n";
-    o += "  \"fallback\": " + (r.fallback == geom::FocusFallback::None ? std::string("null") : str(r.reason)) + ",\n";
-    o += "  \"fallback_kind\": " + str(geom::focus_fallback_name(r.fallback)) + ",\n";
+    o += "  \"fallback\": " + (std::string(fallback_kind) == "none" ? std::string("null") : str(r.reason)) + ",\n";
+    o += "  \"fallback_kind\": " + str(fallback_kind) + ",\n";
     o += "  \"light_kind\": " + str(geom::light_kind_name(r.light_kind)) + ",\n";
     o += "  \"psm_light_kind\": " + str(geom::light_kind_name(r.psm_light_kind)) + ",\n";
     o += std::string("  \"needs_cube_map\": ") + (r.needs_cube_map ? "true" : "false") + ",\n";

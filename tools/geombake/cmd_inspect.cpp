@@ -2,6 +2,7 @@
 // geom/baked_reader.h: header, table, alignment, padding, each section's CRC-32C)
 // and list their sections. A file that fails prints `Error: FILE: ...` and makes
 // the exit status 1.
+#include <cstdint>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -21,11 +22,37 @@ const char* kInspectHelp =
     "  and lists its sections.\n"
     "options:\n"
     "  --json   one JSON object per file, one per line\n"
-    "  -v       also print the topology report section\n";
+    "  -v       also print the topology report section (control characters escaped)\n";
 
 std::string type_label(const geom::baked::Section& s) {
   std::string name = geom::baked::type_name(s.type);
   return name == "unknown" ? "type " + std::to_string(uint32_t(s.type)) : name;
+}
+
+// Prints `size` bytes of a text section (any size: 64-bit throughout) with
+// every control character, DEL and byte over 0x7e escaped (\n, \t, \xNN),
+// so a hostile report cannot drive the terminal; written in chunks.
+void print_text(const unsigned char* data, uint64_t size) {
+  std::string chunk;
+  chunk.reserve(1 << 16);
+  for (uint64_t i = 0; i < size; ++i) {
+    const unsigned char c = data[i];
+    if (c == '\n')
+      chunk += "\\n";
+    else if (c == '\t')
+      chunk += "\\t";
+    else if (c == '\\')
+      chunk += "\\\\";
+    else if (c < 0x20 || c >= 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", c);
+      chunk += b;
+    } else {
+      chunk += char(c);
+    }
+    if (chunk.size() >= (1 << 16) - 8) std::fwrite(chunk.data(), 1, chunk.size(), stdout), chunk.clear();
+  }
+  std::fwrite(chunk.data(), 1, chunk.size(), stdout);
 }
 
 int run_inspect(const std::vector<std::string>& argv) {
@@ -77,20 +104,20 @@ int run_inspect(const std::vector<std::string>& argv) {
       std::printf("{\"file\":%s,%s\n", json_quote(path).c_str(), j.dump().c_str() + 1);  // any name (names.h)
       continue;
     }
-    std::printf("%s: geombake baked file %u.%u, %llu bytes, %zu sections (alignment %u), all checksums verified\n",
+    std::printf("%s: geombake baked file %u.%u, %llu bytes, %llu sections (alignment %u), all checksums verified\n",
                 path.c_str(), r.version_major(), r.version_minor(), (unsigned long long)r.file_size(),
-                r.sections().size(), r.alignment());
+                (unsigned long long)r.sections().size(), r.alignment());
     std::printf("  %-3s %-15s %-22s %-4s %-7s %6s %12s %10s %12s  %s\n", "#", "name", "type", "item", "format",
                 "stride", "count", "offset", "bytes", "crc32c");
     for (size_t i = 0; i < r.sections().size(); ++i) {
       const auto& s = r.sections()[i];
-      std::printf("  %-3zu %-15s %-22s %-4u %-7s %6u %12llu %10llu %12llu  %08x\n", i, s.name, type_label(s).c_str(),
-                  s.item, geom::baked::format_name(s.format), s.stride, (unsigned long long)s.count,
-                  (unsigned long long)s.offset, (unsigned long long)s.size, s.crc);
+      std::printf("  %-3llu %-15s %-22s %-4u %-7s %6u %12llu %10llu %12llu  %08x\n", (unsigned long long)i, s.name,
+                  type_label(s).c_str(), s.item, geom::baked::format_name(s.format), s.stride,
+                  (unsigned long long)s.count, (unsigned long long)s.offset, (unsigned long long)s.size, s.crc);
     }
     if (args.has("-v"))
       if (const auto* t = r.find(geom::baked::SectionType::TopologyReport))
-        std::printf("  topology: %.*s\n", int(t->size), reinterpret_cast<const char*>(t->data));
+        std::fputs("  topology: ", stdout), print_text(t->data, t->size), std::fputc('\n', stdout);
   }
   return failed ? 1 : 0;
 }

@@ -1,5 +1,5 @@
 // geombench: speed against error of every shadow technique of the viewer, and
-// baking throughput against the peer libraries (MISSION.md part 9).
+// baking throughput against the peer libraries.
 //
 //   geombench [--quick] [-o DIR] [--scenes a,b] [--techniques a,b] [--sizes 256,512]
 //             [--size WxH] [--frames N] [--no-bake] [--no-render] [--light-radius R]
@@ -48,41 +48,31 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
+#include <memory>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "bake_throughput.h"
 #include "cli/args.h"
+#include "cli/memory.h"
+#include "cli/output.h"
+#include "cli/view_check.h"
 #include "geom/area_reference.h"
 #include "geom/shadow_error.h"
 #include "geom/shadow_reference.h"
 #include "render/platform.h"
 #include "render/render.h"
+#include "results.h"
 #include "scenes.h"
 #include "size_law.h"
 
 namespace {
 
-struct Row {
-  std::string scene, technique, time_kind;
-  std::string projection;  // what was drawn (render::drawn_projection)
-  int size = 0;
-  double time_ms = 0, error_visible = 0, error_boundary = 0, error_cast = 0, error_self = 0, error_fraction = -1;
-  size_t visible = 0, boundary = 0, cast = 0, self = 0, triangles = 0;
-  int frames = 0;
-};
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
+using geombench::fmt;
+using geombench::Row;
 
 bool is_shadow_pass(const std::string& pass) {
   return pass != "depth + ambient" && pass != "lit shading" && pass != "shading" && pass != "inspection" &&
@@ -94,12 +84,6 @@ void score(const geom::PngImage& mask, const geom::ShadowReference& ref, Row& r)
   r.visible = e.visible_pixels, r.boundary = e.boundary_pixels, r.cast = e.cast_pixels, r.self = e.self_pixels;
   r.error_visible = e.error_visible, r.error_boundary = e.error_boundary;
   r.error_cast = e.error_cast, r.error_self = e.error_self;
-}
-
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
 }
 
 // ---- summary: the best configuration at each time budget, and the goals ----
@@ -160,7 +144,7 @@ const Row* find(const std::vector<Row>& rows, const std::string& scene, const st
   return nullptr;
 }
 
-// Issue 16: sssm's error within 1.5x edsm's at every size on pipes, default and
+// The soft-shadow and silhouette-map checks: sssm's error within 1.5x edsm's at every size on pipes, default and
 // scan; edsm-soft's light-fraction error below pcf-soft's at every size on pipes
 // and default, at no more than 1.2x edsm's hard-shadow time.
 void soft_goals(const std::vector<Row>& rows, std::vector<std::string>& out) {
@@ -217,7 +201,8 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
     double worst = 0;
     std::string where;
     int n = 0;
-    for (const Row& r : rows)  // depth-pass is invalid by construction on near-plane (its near plane in a shadow)
+    for (const Row& r : rows)
+      // depth-pass is invalid by construction on near-plane (its near plane in a shadow)
       if (r.technique.rfind("sv", 0) == 0 && !(r.technique == "sv-zpass" && r.scene == "near-plane")) {
         ++n;
         if (r.error_visible >= worst) worst = r.error_visible, where = r.scene + " " + r.technique;
@@ -227,7 +212,7 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
                     ": shadow volumes near zero error (goal <= 0.001 of visible pixels): worst " + fmt("%.5f", worst) +
                     " (" + where + ")");
   }
-  // Issue 18: judged on error_cast, on the pipes, default, jenga and scan
+  // Kenzel 2013, Sect. 5.2 (pixel-exact hard shadows), judged on error_cast, on the pipes, default, jenga and scan
   // scenes, N = 512..2048: edsm@N <= ssm@N / 10 and <= ssm@4N, esm@N <= ssm@N / 3.
   const std::set<std::string> goal_scenes = {"pipes", "default", "jenga", "scan"};
   struct CastGoal {
@@ -317,76 +302,6 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
   return out;
 }
 
-// ---- the plot: error against time, a panel per scene ----
-
-std::string plot_svg(const std::vector<Row>& rows, const std::vector<std::string>& scenes,
-                     const std::vector<std::string>& techniques, const std::string& kind) {
-  const int pw = 360, ph = 260, cols = 3, ml = 55, mb = 40, mt = 28, mr = 12;
-  const int rows_n = int((scenes.size() + cols - 1) / cols);
-  const int legend_h = 30, W = cols * pw, H = rows_n * ph + legend_h + 30;
-  static const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
-                                  "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000"};
-  std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-    << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  s << "<text x=\"8\" y=\"18\" font-size=\"14\">geombench: error (share of visible pixels wrong) against shadow-pass "
-       "time ("
-    << kind << " time, log scale); a line per technique, a point per shadow-map size</text>\n";
-  for (size_t si = 0; si < scenes.size(); ++si) {
-    const int ox = int(si % cols) * pw, oy = 30 + int(si / cols) * ph;
-    double tmin = 1e30, tmax = 0, emax = 0;
-    for (const Row& r : rows)
-      if (r.scene == scenes[si])
-        tmin = std::min(tmin, std::max(r.time_ms, 1e-3)), tmax = std::max(tmax, r.time_ms),
-        emax = std::max(emax, r.error_visible);
-    if (tmax <= 0) continue;
-    const double l0 = std::floor(std::log10(tmin)), l1 = std::max(l0 + 1, std::ceil(std::log10(std::max(tmax, 1e-3))));
-    emax = emax > 0 ? emax * 1.1 : 0.01;
-    const int x0 = ox + ml, x1 = ox + pw - mr, y0 = oy + ph - mb, y1 = oy + mt;
-    auto X = [&](double t) { return x0 + (std::log10(std::max(t, 1e-3)) - l0) / (l1 - l0) * (x1 - x0); };
-    auto Y = [&](double e) { return y0 - e / emax * (y0 - y1); };
-    s << "<text x=\"" << ox + ml << "\" y=\"" << oy + 18 << "\" font-weight=\"bold\">" << scenes[si] << "</text>\n";
-    s << "<rect x=\"" << x0 << "\" y=\"" << y1 << "\" width=\"" << x1 - x0 << "\" height=\"" << y0 - y1
-      << "\" fill=\"none\" stroke=\"#888\"/>\n";
-    for (double l = l0; l <= l1 + 1e-9; l += 1)
-      s << "<text x=\"" << X(std::pow(10, l)) << "\" y=\"" << y0 + 14 << "\" text-anchor=\"middle\">"
-        << fmt("%g", std::pow(10, l)) << "</text>\n";
-    for (int k = 0; k <= 4; ++k)
-      s << "<text x=\"" << x0 - 4 << "\" y=\"" << Y(emax * k / 4) + 4 << "\" text-anchor=\"end\">"
-        << fmt("%.3f", emax * k / 4) << "</text>\n";
-    s << "<text x=\"" << (x0 + x1) / 2 << "\" y=\"" << y0 + 30 << "\" text-anchor=\"middle\">ms</text>\n";
-    for (size_t ti = 0; ti < techniques.size(); ++ti) {
-      std::vector<const Row*> pts;
-      for (const Row& r : rows)
-        if (r.scene == scenes[si] && r.technique == techniques[ti]) pts.push_back(&r);
-      std::sort(pts.begin(), pts.end(), [](const Row* a, const Row* b) { return a->size < b->size; });
-      const char* c = colours[ti % 11];
-      if (pts.size() > 1) {
-        s << "<polyline fill=\"none\" stroke=\"" << c << "\" points=\"";
-        for (const Row* p : pts) s << X(p->time_ms) << "," << Y(p->error_visible) << " ";
-        s << "\"/>\n";
-      }
-      for (const Row* p : pts)
-        s << "<circle cx=\"" << X(p->time_ms) << "\" cy=\"" << Y(p->error_visible) << "\" r=\"3\" fill=\"" << c
-          << "\"><title>" << p->technique << " " << p->size << ": " << p->time_ms << " ms, " << p->error_visible
-          << "</title></circle>\n";
-    }
-  }
-  for (size_t ti = 0; ti < techniques.size(); ++ti) {
-    const int x = 10 + int(ti) * 95, y = H - 18;
-    s << "<rect x=\"" << x << "\" y=\"" << y - 9 << "\" width=\"12\" height=\"10\" fill=\"" << colours[ti % 11]
-      << "\"/><text x=\"" << x + 16 << "\" y=\"" << y << "\">" << techniques[ti] << "</text>\n";
-  }
-  s << "</svg>\n";
-  return s.str();
-}
-
-bool write_text(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  return bool(f);
-}
-
 int usage(const std::string& error) {
   if (!error.empty()) cli::error("%s", error.c_str());
   std::fprintf(error.empty() ? stdout : stderr,
@@ -395,274 +310,357 @@ int usage(const std::string& error) {
   return error.empty() ? cli::kExitOk : cli::kExitUsage;
 }
 
-}  // namespace
+// The whole run, from the command line, validated before anything is measured.
+struct Plan {
+  bool quick = false, bake = true, render = true;
+  int width = 640, height = 480, frames = 3;
+  double light_radius = -1;  // -1: the default of each scene
+  std::vector<int> sizes;
+  std::vector<std::string> scene_names;
+  std::vector<render::Technique> techniques;
+  std::string shader_dir = GEOM_SHADER_DIR, out_dir;
+};
 
-int main(int argc, char** argv) {
+// The flags into `plan`, each strictly (cli/args.h): an unknown scene or
+// technique, an empty list, a number out of range or not whole is an error.
+bool parse_plan(const cli::Args& args, Plan& plan, std::string& error) {
+  plan.quick = args.has("--quick"), plan.bake = !args.has("--no-bake"), plan.render = !args.has("--no-render");
+  if (plan.quick) plan.width = 160, plan.height = 120, plan.frames = 1;
+  if (!cli::size_option(args, "--size", 8, 4096, plan.width, plan.height, error) ||
+      !cli::int_option(args, "--frames", 1, 1000, plan.frames, error) ||
+      !cli::real_option(args, "--light-radius", 0, 1e6, plan.light_radius, error))
+    return false;
+  plan.sizes = plan.quick ? std::vector<int>{256, 1024} : std::vector<int>{256, 512, 1024, 2048, 4096};
+  std::vector<std::string> items;
+  if (!cli::list_option(args, "--sizes", items, error)) return false;
+  if (args.has("--sizes")) plan.sizes.clear();
+  for (const std::string& v : args.has("--sizes") ? items : std::vector<std::string>{}) {
+    long long n = 0;
+    if (!cli::parse_int(v, 16, 8192, n))
+      return error = "--sizes: shadow-map size '" + v + "' is not an integer within 16..8192", false;
+    plan.sizes.push_back(int(n));
+  }
+  plan.scene_names = plan.quick ? geombench::quick_scene_names() : geombench::scene_names();
+  if (!cli::list_option(args, "--scenes", plan.scene_names, error)) return false;
+  const std::vector<std::string> known = geombench::scene_names();
+  for (const std::string& name : plan.scene_names)
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string all;
+      for (const std::string& k : known) all += " " + k;
+      return error = "--scenes: unknown scene '" + name + "' (known:" + all + ")", false;
+    }
+  plan.techniques = render::available_techniques();
+  if (!cli::list_option(args, "--techniques", items, error)) return false;
+  if (args.has("--techniques")) plan.techniques.clear();
+  for (const std::string& v : args.has("--techniques") ? items : std::vector<std::string>{}) {
+    render::Technique t;
+    if (!render::parse_technique(v, t)) return error = "--techniques: unknown technique '" + v + "'", false;
+    plan.techniques.push_back(t);
+  }
+  if (const char* e = std::getenv("GEOMVIEW_SHADERS"); e && *e) plan.shader_dir = e;
+  if (args.has("--shaders")) plan.shader_dir = args.get("--shaders");
+  plan.out_dir = args.get("-o");
+  if (args.has("-o") && !cli::check_output_path(plan.out_dir, true, error)) return false;
+  return true;
+}
+
+// A scene of the plan with its light radius (the soft techniques').
+struct Loaded {
+  geombench::BenchScene b;
+  float radius = 0;
+};
+
+// Every scene of the plan, built now, and checked: its light and camera
+// (cli/view_check.h), the light radius against its light. A scene whose data
+// is missing is skipped (listed in `skipped`); anything else wrong is an error
+// before a single measurement.
+bool load_scenes(const Plan& plan, std::vector<Loaded>& scenes, std::vector<std::string>& skipped, std::string& error) {
+  const bool soft = std::any_of(plan.techniques.begin(), plan.techniques.end(), render::technique_is_soft);
+  for (const std::string& name : plan.render ? plan.scene_names : std::vector<std::string>{}) {
+    Loaded l;
+    std::string problem;
+    if (!geombench::make_scene(name, l.b, problem)) {
+      cli::warning("scene %s skipped: %s", name.c_str(), problem.c_str());
+      skipped.push_back(name + ": " + problem);
+      continue;
+    }
+    if (!cli::check_light(l.b.light, "scene " + name + ": light", error)) return false;
+    geom::Camera view = l.b.view;
+    view.width = plan.width, view.height = plan.height;
+    if (!l.b.default_view && !cli::check_camera(view, "scene " + name + ": camera", error)) return false;
+    const bool directional = l.b.light.type == geom::LightType::Directional;
+    if (soft && directional && plan.light_radius >= M_PI / 2)
+      return error = "--light-radius " + fmt("%g", plan.light_radius) + ": scene " + name +
+                     " has a directional light, whose radius is an angle: it must be under pi/2",
+             false;
+    scenes.push_back(std::move(l));
+  }
+  return true;
+}
+
+// This machine's memory against the plan's largest image and map (before anything runs).
+bool check_memory(const Plan& plan, std::string& error) {
+  const int map = *std::max_element(plan.sizes.begin(), plan.sizes.end());
+  const uint64_t need = uint64_t(plan.width) * uint64_t(plan.height) * cli::kBytesPerImagePixel +
+                        uint64_t(map) * uint64_t(map) * cli::kBytesPerMapTexel * 6u;
+  if (need > cli::memory_budget())
+    return error = "the run needs about " + cli::gib(need) + " (image " + std::to_string(plan.width) + "x" +
+                   std::to_string(plan.height) + ", shadow maps up to " + std::to_string(map) +
+                   "), over its memory budget of " + cli::gib(cli::memory_budget()),
+           false;
+  return true;
+}
+
+// The GL context's limits against the plan's image and maps (the flags' ranges
+// are within what every OpenGL 4.5 context must hold: 16384).
+bool check_gl_limits(const Plan& plan, std::string& error) {
+  const render::GlLimits gl = render::gl_limits();
+  const int map = *std::max_element(plan.sizes.begin(), plan.sizes.end());
+  if (plan.width > gl.max_image_width() || plan.height > gl.max_image_height() || map > gl.max_cube_map ||
+      map > gl.max_texture)
+    return error = "--size " + std::to_string(plan.width) + "x" + std::to_string(plan.height) + " or shadow-map size " +
+                   std::to_string(map) + " is over this OpenGL's limits (image " +
+                   std::to_string(gl.max_image_width()) + "x" + std::to_string(gl.max_image_height()) + ", texture " +
+                   std::to_string(gl.max_texture) + ", cube-map face " + std::to_string(gl.max_cube_map) + ")",
+           false;
+  return true;
+}
+
+// The bake throughput table (it forks: best done before a GL context exists).
+std::vector<geombench::BakeRow> run_bake(const Plan& plan) {
+  const std::vector<int> ns = plan.quick ? std::vector<int>{70, 158} : std::vector<int>{70, 158, 316, 633};
+  std::vector<geombench::BakeRow> bake = geombench::bake_throughput(ns, plan.quick ? 1 : 3, plan.quick ? 0 : 320000);
+  std::printf("Bake throughput (one core; CPU time per call, median of %d; peak: extra resident memory of one run)\n",
+              plan.quick ? 1 : 3);
+  std::printf("%10s  %-9s %10s %12s %10s %9s %9s\n", "triangles", "method", "ms", "Mtris/s", "peak MiB", "speed/mo",
+              "mem/mo");
+  for (size_t i = 0; i < bake.size(); ++i) {
+    const geombench::BakeRow& r = bake[i];
+    const geombench::BakeRow& mo = bake[i - i % 3 + 1];
+    std::printf("%10llu  %-9s %10.2f %12.2f %10.1f %9.2f %9.2f\n", (unsigned long long)r.triangles, r.method.c_str(),
+                r.seconds * 1e3, r.triangles_per_second * 1e-6, r.peak_bytes / 1048576.0,
+                r.triangles_per_second / std::max(1.0, mo.triangles_per_second),
+                mo.peak_bytes > 0 ? r.peak_bytes / mo.peak_bytes : 0.0);
+  }
+  std::fflush(stdout);
+  return bake;
+}
+
+// What the measurements of a run share: the rows and what the outputs name.
+struct Measured {
+  std::vector<Row> rows;
+  std::set<std::string> hard;
+  std::vector<std::string> scenes_done, skipped;
+  std::string renderer, kind_text, kind = "wall";
+};
+
+// One technique at one map size (0: no map) on one scene: the median time over
+// the frames after a warm-up frame, and the errors against the references.
+bool measure_cell(const Plan& plan, const Loaded& l, render::State& state, const geom::Camera& view,
+                  const geom::ShadowReference& ref, const geom::AreaReference& area, render::Technique t, int size,
+                  bool warm, Measured& m, std::string& error) {
+  const geombench::BenchScene& b = l.b;
+  render::FrameSettings fs;
+  fs.technique = t, fs.output = render::Output::Mask, fs.shadow_map_size = size ? size : 1024;
+  const bool soft = render::technique_is_soft(t);
+  if (soft) fs.output = render::Output::Fraction, fs.light_radius = l.radius;
+  geom::PngImage mask;
+  std::vector<render::PassTime> times;
+  // Fewer frames where one is slow (4096 maps, the heavy scene), never fewer sizes.
+  const int n = (size >= 4096 || b.scene.triangle_count() > 100000) ? std::min(plan.frames, 1) : plan.frames;
+  std::vector<double> ms;
+  for (int f = warm ? 0 : -1; f < n; ++f) {
+    times.clear();
+    if (!render::render(state, view, b.light, fs, mask, times, error)) return false;
+    if (f < 0) continue;
+    double sum = 0;
+    for (const render::PassTime& p : times)
+      if (is_shadow_pass(p.pass)) sum += p.ms;
+    ms.push_back(sum);
+  }
+  std::sort(ms.begin(), ms.end());
+  Row r;
+  r.scene = b.name, r.technique = render::technique_name(t), r.size = size, r.time_kind = m.kind;
+  r.time_ms = ms[ms.size() / 2], r.frames = n, r.triangles = b.scene.triangle_count();
+  r.projection = render::drawn_projection(state);
+  if (area.ok) r.error_fraction = geom::mean_fraction_error(mask.pixels, area);
+  if (soft)  // the hard state of a fraction: lit from 0.5 on
+    for (uint8_t& v : mask.pixels) v = v >= 128 ? 255 : 0;
+  score(mask, ref, r);
+  m.rows.push_back(r);
+  std::printf("  %-10s %6s %10.3f %10.5f %10.5f %10.5f %10.5f %10.5f  %s\n", r.technique.c_str(),
+              size ? std::to_string(size).c_str() : "-", r.time_ms, r.error_visible, r.error_boundary, r.error_cast,
+              r.error_self, r.error_fraction, r.projection.c_str());
+  std::fflush(stdout);
+  return true;
+}
+
+// Every technique and size of the plan on one scene, after its references.
+bool measure_scene(const Plan& plan, Loaded& l, Measured& m, std::string& error) {
+  const geombench::BenchScene& b = l.b;
+  const std::string& name = b.name;
+  render::StatePtr state = render::create_state(b.scene, plan.shader_dir, error);
+  if (!state) return error = "scene " + name + ": " + error, false;
+  if (const std::string gl = render::gl_error_text(); !gl.empty()) return error = "scene " + name + ": " + gl, false;
+  m.renderer = render::renderer_name(*state);
+  m.kind_text = render::timing_kind(*state);
+  m.kind = m.kind_text.find("GPU") != std::string::npos ? "gpu" : "wall";
+  geom::Camera view = b.default_view ? render::default_view(*state, plan.width, plan.height) : b.view;
+  view.width = plan.width, view.height = plan.height;
+  if (!cli::check_camera(view, "scene " + name + ": camera", error)) return false;
+  const auto positions = geom::positions_of(b.scene.positions.data(), b.scene.vertex_count());
+  const geom::ShadowReference ref =
+      geom::shadow_reference(positions, b.scene.indices.data(), b.scene.indices.size(), view, b.light);
+  if (!ref.ok) return error = "scene " + name + ": reference: " + ref.error, false;
+  float sb[4];  // the area-light reference, where a soft technique runs
+  render::scene_bounds(*state, sb);
+  const bool directional = b.light.type == geom::LightType::Directional;
+  l.radius = float(plan.light_radius >= 0 ? plan.light_radius : directional ? 0.02 : 0.04 * sb[3]);
+  geom::AreaReference area;
+  if (std::any_of(plan.techniques.begin(), plan.techniques.end(), render::technique_is_soft)) {
+    area = geom::area_light_reference(positions, b.scene.indices.data(), b.scene.indices.size(), view, b.light,
+                                      l.radius, 64);
+    if (!area.ok) return error = "scene " + name + ": area reference: " + area.error, false;
+  }
+  m.scenes_done.push_back(name);
+  if (b.hard) m.hard.insert(name);
+  std::printf("\n%s: %s; %zu triangles; %dx%d; %s\n", name.c_str(), b.description.c_str(), b.scene.triangle_count(),
+              plan.width, plan.height, m.kind_text.c_str());
+  if (area.ok) std::printf("  light radius %g (soft techniques; err frac: vs the area-light reference)\n", l.radius);
+  std::printf("  %-10s %6s %10s %10s %10s %10s %10s %10s  %s\n", "technique", "map", "time ms", "err vis", "err bnd",
+              "err cast", "err self", "err frac", "projection drawn");
+  for (render::Technique t : plan.techniques) {
+    if (render::technique_needs_point_light(t) && directional) {
+      std::printf("  %-10s (needs a point or spot light: not measured)\n", render::technique_name(t));
+      continue;
+    }
+    bool warm = false;
+    for (int size : render::technique_has_map(t) ? plan.sizes : std::vector<int>{0}) {
+      if (!measure_cell(plan, l, *state, view, ref, area, t, size, warm, m, error))
+        return error = "scene " + name + ", " + render::technique_name(t) + ": " + error, false;
+      warm = true;
+    }
+  }
+  return true;
+}
+
+std::string results_json(const Plan& plan, const Measured& m, const std::vector<geombench::BakeRow>& bake,
+                         const std::vector<std::string>& best, const std::vector<std::string>& goal_lines) {
+  nlohmann::json results = nlohmann::json::array();
+  for (const Row& r : m.rows)
+    results.push_back({{"scene", r.scene},
+                       {"technique", r.technique},
+                       {"shadow_map_size", r.size},
+                       {"time_ms", r.time_ms},
+                       {"time_kind", r.time_kind},
+                       {"error_visible", r.error_visible},
+                       {"error_boundary", r.error_boundary},
+                       {"error_cast", r.error_cast},
+                       {"error_self", r.error_self},
+                       {"cast_pixels", r.cast},
+                       {"self_pixels", r.self},
+                       {"visible_pixels", r.visible},
+                       {"boundary_pixels", r.boundary},
+                       {"frames", r.frames},
+                       {"triangles", r.triangles},
+                       {"error_fraction", r.error_fraction},
+                       {"projection", r.projection}});
+  nlohmann::json bj = nlohmann::json::array();
+  for (size_t i = 0; i < bake.size(); ++i) {
+    const geombench::BakeRow& r = bake[i];
+    double sp = 0, mem = 0;
+    bake_ratios(bake, i, sp, mem);
+    bj.push_back({{"triangles", r.triangles},
+                  {"method", r.method},
+                  {"seconds", r.seconds},
+                  {"triangles_per_second", r.triangles_per_second},
+                  {"peak_bytes", r.peak_bytes},
+                  {"speed_vs_meshopt", sp},
+                  {"memory_vs_meshopt", mem}});
+  }
+  const nlohmann::json j = {{"renderer", m.renderer},  {"timing", m.kind_text},
+                            {"time_kind", m.kind},     {"image", {{"width", plan.width}, {"height", plan.height}}},
+                            {"quick", plan.quick},     {"shadow_map_sizes", plan.sizes},
+                            {"scenes", m.scenes_done}, {"skipped", m.skipped},
+                            {"results", results},      {"bake", bj},
+                            {"best_at_budget", best},  {"goals", goal_lines}};
+  return j.dump(1) + "\n";
+}
+
+// The tables on stdout; with -o, the five files, all or none (cli/output.h).
+bool report(const Plan& plan, const Measured& m, const std::vector<geombench::BakeRow>& bake, std::string& error) {
+  const std::vector<std::string> best = budget_summary(m.rows);
+  const std::vector<std::string> goal_lines = goals(m.rows, m.hard, bake);
+  if (!m.rows.empty()) {
+    std::printf("\nBest technique at each time budget (mean time and mean error over the scenes):\n");
+    for (const std::string& l : best) std::printf("  %s\n", l.c_str());
+  }
+  if (!goal_lines.empty()) {
+    const std::string times = m.rows.empty() ? std::string("bake: CPU time per call")
+                              : bake.empty() ? m.kind + " time"
+                                             : m.kind + " time; bake: CPU time per call";
+    std::printf("\nGoals of the full run (%s):\n", times.c_str());
+    for (const std::string& l : goal_lines) std::printf("  %s\n", l.c_str());
+  }
+  if (plan.out_dir.empty()) return true;
+  const std::string& dir = plan.out_dir;
+  cli::OutputSet out;
+  out.add(dir + "/results.csv", results_csv(m.rows));
+  out.add(dir + "/bake.csv", bake_csv(bake));
+  out.add(dir + "/results.json", results_json(plan, m, bake, best, goal_lines));
+  std::vector<std::string> tech_names;
+  for (render::Technique t : plan.techniques) tech_names.push_back(render::technique_name(t));
+  out.add(dir + "/plot.svg", plot_svg(m.rows, m.scenes_done, tech_names, m.kind));
+  std::ostringstream md;
+  md << "# geombench summary\n\nrenderer: " << m.renderer << "; timing: " << m.kind_text << "; image " << plan.width
+     << "x" << plan.height << "\n\n## Best technique at each time budget\n\n";
+  for (const std::string& l : best) md << "- " << l << "\n";
+  md << "\n## Goals\n\n";
+  for (const std::string& l : goal_lines) md << "- " << l << "\n";
+  for (const std::string& l : m.skipped) md << "- skipped scene " << l << "\n";
+  out.add(dir + "/summary.md", md.str());
+  if (!out.commit(error)) return false;
+  std::printf("\nwrote %s/results.csv, results.json, bake.csv, plot.svg, summary.md\n", dir.c_str());
+  return true;
+}
+
+int run(int argc, char** argv) {
   cli::Args args(std::vector<std::string>(argv + 1, argv + argc),
                  {"--quick", "--no-bake", "--no-render", "-h", "--help"},
                  {"-o", "--scenes", "--techniques", "--sizes", "--size", "--frames", "--shaders", "--light-radius"});
   if (!args.error().empty()) return usage(args.error());
   if (args.has("-h") || args.has("--help")) return usage("");
   if (!args.positional().empty()) return usage("unexpected argument '" + args.positional()[0] + "'");
-  const bool quick = args.has("--quick");
-  int width = quick ? 160 : 640, height = quick ? 120 : 480, frames = quick ? 1 : 3;
-  if (args.has("--size") && std::sscanf(args.get("--size").c_str(), "%dx%d", &width, &height) != 2)
-    return usage("--size wants WxH");
-  if (width < 8 || height < 8 || width > 4096 || height > 4096) return usage("--size out of range (8..4096)");
-  if (args.has("--frames")) frames = std::atoi(args.get("--frames").c_str());
-  if (frames < 1 || frames > 1000) return usage("--frames wants 1..1000");
-  double light_radius = -1;  // -1: the default of each scene
-  if (args.has("--light-radius")) {
-    char* end = nullptr;
-    light_radius = std::strtod(args.get("--light-radius").c_str(), &end);
-    if (!end || *end || !(light_radius >= 0) || light_radius > 1e6) return usage("--light-radius wants R >= 0");
-  }
-  std::vector<int> sizes = quick ? std::vector<int>{256, 1024} : std::vector<int>{256, 512, 1024, 2048, 4096};
-  if (args.has("--sizes")) {
-    sizes.clear();
-    for (const std::string& v : split(args.get("--sizes"))) {
-      const int n = std::atoi(v.c_str());
-      if (n < 16 || n > 8192) return usage("shadow-map size '" + v + "' out of range (16..8192)");
-      sizes.push_back(n);
-    }
-  }
-  std::vector<std::string> scene_list = quick ? geombench::quick_scene_names() : geombench::scene_names();
-  if (args.has("--scenes")) scene_list = split(args.get("--scenes"));
-  std::vector<render::Technique> techniques = render::available_techniques();
-  if (args.has("--techniques")) {
-    techniques.clear();
-    for (const std::string& v : split(args.get("--techniques"))) {
-      render::Technique t;
-      if (!render::parse_technique(v, t)) return usage("unknown technique '" + v + "'");
-      techniques.push_back(t);
-    }
-  }
-  std::string shader_dir = GEOM_SHADER_DIR;
-  if (const char* e = std::getenv("GEOMVIEW_SHADERS")) shader_dir = e;
-  if (args.has("--shaders")) shader_dir = args.get("--shaders");
-  const std::string out_dir = args.get("-o");
-  if (!out_dir.empty()) {  // created before the run: minutes of work must not end unable to write
-    std::error_code ec;
-    std::filesystem::create_directories(out_dir, ec);
-    if (!std::filesystem::is_directory(out_dir)) {
-      cli::error("%s: cannot create the output folder%s%s", out_dir.c_str(), ec ? ": " : "",
-                 ec ? ec.message().c_str() : "");
-      return cli::kExitFailure;
-    }
-  }
-
-  // Bake throughput first: it forks, which is best done before a GL context exists.
+  Plan plan;
+  std::string error;
+  if (!parse_plan(args, plan, error)) return usage(error);
+  Measured m;
+  std::vector<Loaded> scenes;
+  if (!load_scenes(plan, scenes, m.skipped, error)) return usage(error);
+  if (!check_memory(plan, error)) return cli::error("%s", error.c_str()), cli::kExitFailure;
   std::vector<geombench::BakeRow> bake;
-  if (!args.has("--no-bake")) {
-    const std::vector<int> ns = quick ? std::vector<int>{70, 158} : std::vector<int>{70, 158, 316, 633};
-    bake = geombench::bake_throughput(ns, quick ? 1 : 3, quick ? 0 : 320000);
-    std::printf("Bake throughput (one core; CPU time per call, median of %d; peak: extra resident memory of one run)\n",
-                quick ? 1 : 3);
-    std::printf("%10s  %-9s %10s %12s %10s %9s %9s\n", "triangles", "method", "ms", "Mtris/s", "peak MiB", "speed/mo",
-                "mem/mo");
-    for (size_t i = 0; i < bake.size(); ++i) {
-      const geombench::BakeRow& r = bake[i];
-      const geombench::BakeRow& mo = bake[i - i % 3 + 1];
-      std::printf("%10llu  %-9s %10.2f %12.2f %10.1f %9.2f %9.2f\n", (unsigned long long)r.triangles, r.method.c_str(),
-                  r.seconds * 1e3, r.triangles_per_second * 1e-6, r.peak_bytes / 1048576.0,
-                  r.triangles_per_second / std::max(1.0, mo.triangles_per_second),
-                  mo.peak_bytes > 0 ? r.peak_bytes / mo.peak_bytes : 0.0);
-    }
-    std::fflush(stdout);
+  if (plan.bake) bake = run_bake(plan);
+  if (plan.render && !scenes.empty()) {
+    std::string note;
+    std::unique_ptr<render::Platform> platform =
+        render::Platform::open(false, plan.width, plan.height, "geombench", note, error);
+    if (!platform) return cli::error("no OpenGL context: %s", error.c_str()), cli::kExitFailure;
+    if (!check_gl_limits(plan, error)) return cli::error("%s", error.c_str()), cli::kExitFailure;
+    for (Loaded& l : scenes)
+      if (!measure_scene(plan, l, m, error)) return cli::error("%s", error.c_str()), cli::kExitFailure;
   }
+  if (!report(plan, m, bake, error)) return cli::error("%s", error.c_str()), cli::kExitFailure;
+  return cli::kExitOk;
+}
 
-  std::vector<Row> rows;
-  std::set<std::string> hard;
-  std::vector<std::string> scenes_done, skipped;
-  std::string renderer, kind_text, kind = "wall";
-  std::unique_ptr<render::Platform> platform;
-  if (!args.has("--no-render")) {
-    std::string note, error;
-    platform = render::Platform::open(false, width, height, "geombench", note, error);
-    if (!platform) {
-      cli::error("no OpenGL context: %s", error.c_str());
-      return cli::kExitFailure;
-    }
-  }
-  for (const std::string& name : platform ? scene_list : std::vector<std::string>{}) {
-    geombench::BenchScene b;
-    std::string error;
-    if (!geombench::make_scene(name, b, error)) {
-      cli::warning("scene %s skipped: %s", name.c_str(), error.c_str());
-      skipped.push_back(name + ": " + error);
-      continue;
-    }
-    render::StatePtr state = render::create_state(b.scene, shader_dir, error);
-    if (!state) {
-      cli::error("scene %s: %s", name.c_str(), error.c_str());
-      return cli::kExitFailure;
-    }
-    renderer = render::renderer_name(*state);
-    kind_text = render::timing_kind(*state);
-    kind = kind_text.find("GPU") != std::string::npos ? "gpu" : "wall";
-    geom::Camera view = b.default_view ? render::default_view(*state, width, height) : b.view;
-    view.width = width, view.height = height;
-    const geom::ShadowReference ref =
-        geom::shadow_reference(geom::positions_of(b.scene.positions.data(), b.scene.vertex_count()),
-                               b.scene.indices.data(), b.scene.indices.size(), view, b.light);
-    if (!ref.ok) {
-      cli::error("scene %s: reference: %s", name.c_str(), ref.error.c_str());
-      return cli::kExitFailure;
-    }
-    // The area-light reference, where a soft technique runs.
-    float sb[4];
-    render::scene_bounds(*state, sb);
-    const bool directional = b.light.type == geom::LightType::Directional;
-    const float radius = float(light_radius >= 0 ? light_radius : directional ? 0.02 : 0.04 * sb[3]);
-    geom::AreaReference area;
-    if (std::any_of(techniques.begin(), techniques.end(), render::technique_is_soft)) {
-      area = geom::area_light_reference(geom::positions_of(b.scene.positions.data(), b.scene.vertex_count()),
-                                        b.scene.indices.data(), b.scene.indices.size(), view, b.light, radius, 64);
-      if (!area.ok) {
-        cli::error("scene %s: area reference: %s", name.c_str(), area.error.c_str());
-        return cli::kExitFailure;
-      }
-    }
-    scenes_done.push_back(name);
-    if (b.hard) hard.insert(name);
-    std::printf("\n%s: %s; %zu triangles; %dx%d; %s\n", name.c_str(), b.description.c_str(), b.scene.triangle_count(),
-                width, height, kind_text.c_str());
-    if (area.ok) std::printf("  light radius %g (soft techniques; err frac: vs the area-light reference)\n", radius);
-    std::printf("  %-10s %6s %10s %10s %10s %10s %10s %10s  %s\n", "technique", "map", "time ms", "err vis", "err bnd",
-                "err cast", "err self", "err frac", "projection drawn");
-    for (render::Technique t : techniques) {
-      if (render::technique_needs_point_light(t) && b.light.type == geom::LightType::Directional) {
-        std::printf("  %-10s (needs a point or spot light: not measured)\n", render::technique_name(t));
-        continue;
-      }
-      bool warm = false;
-      for (int size : render::technique_has_map(t) ? sizes : std::vector<int>{0}) {
-        render::FrameSettings fs;
-        fs.technique = t, fs.output = render::Output::Mask, fs.shadow_map_size = size ? size : 1024;
-        const bool soft = render::technique_is_soft(t);
-        if (soft) fs.output = render::Output::Fraction, fs.light_radius = radius;
-        geom::PngImage mask;
-        std::vector<render::PassTime> times;
-        // Fewer frames where one is slow (4096 maps, the heavy scene), never fewer sizes.
-        const int n = (size >= 4096 || b.scene.triangle_count() > 100000) ? std::min(frames, 1) : frames;
-        std::vector<double> ms;
-        for (int f = warm ? 0 : -1; f < n; ++f) {
-          times.clear();
-          if (!render::render(*state, view, b.light, fs, mask, times, error)) {
-            cli::error("scene %s, %s: %s", name.c_str(), render::technique_name(t), error.c_str());
-            return cli::kExitFailure;
-          }
-          if (f < 0) continue;
-          double sum = 0;
-          for (const render::PassTime& p : times)
-            if (is_shadow_pass(p.pass)) sum += p.ms;
-          ms.push_back(sum);
-        }
-        warm = true;
-        std::sort(ms.begin(), ms.end());
-        Row r;
-        r.scene = name, r.technique = render::technique_name(t), r.size = size, r.time_kind = kind;
-        r.time_ms = ms[ms.size() / 2], r.frames = n, r.triangles = b.scene.triangle_count();
-        r.projection = render::drawn_projection(*state);
-        if (area.ok) r.error_fraction = geom::mean_fraction_error(mask.pixels, area);
-        if (soft)  // the hard state of a fraction: lit from 0.5 on
-          for (uint8_t& v : mask.pixels) v = v >= 128 ? 255 : 0;
-        score(mask, ref, r);
-        rows.push_back(r);
-        std::printf("  %-10s %6s %10.3f %10.5f %10.5f %10.5f %10.5f %10.5f  %s\n", r.technique.c_str(),
-                    size ? std::to_string(size).c_str() : "-", r.time_ms, r.error_visible, r.error_boundary,
-                    r.error_cast, r.error_self, r.error_fraction, r.projection.c_str());
-        std::fflush(stdout);
-      }
-    }
-  }
+}  // namespace
 
-  const std::vector<std::string> best = budget_summary(rows);
-  const std::vector<std::string> goal_lines = goals(rows, hard, bake);
-  if (!rows.empty()) {
-    std::printf("\nBest technique at each time budget (mean time and mean error over the scenes):\n");
-    for (const std::string& l : best) std::printf("  %s\n", l.c_str());
+// A failed allocation ends the run with an Error: line and exit 1, nothing written.
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    cli::error("out of memory (std::bad_alloc): a smaller --size, fewer --sizes or scenes");
+    return cli::kExitFailure;
   }
-  if (!goal_lines.empty()) {
-    const std::string times = rows.empty()   ? std::string("bake: CPU time per call")
-                              : bake.empty() ? kind + " time"
-                                             : kind + " time; bake: CPU time per call";
-    std::printf("\nGoals of the full run (%s):\n", times.c_str());
-    for (const std::string& l : goal_lines) std::printf("  %s\n", l.c_str());
-  }
-
-  if (!out_dir.empty()) {
-    std::ostringstream csv;
-    csv << "scene,technique,shadow_map_size,time_ms,time_kind,error_visible,error_boundary,visible_pixels,"
-           "boundary_pixels,frames,triangles,error_cast,error_self,cast_pixels,self_pixels,error_fraction,projection\n";
-    nlohmann::json results = nlohmann::json::array();
-    for (const Row& r : rows) {
-      csv << r.scene << "," << r.technique << "," << r.size << "," << fmt("%.4f", r.time_ms) << "," << r.time_kind
-          << "," << fmt("%.6f", r.error_visible) << "," << fmt("%.6f", r.error_boundary) << "," << r.visible << ","
-          << r.boundary << "," << r.frames << "," << r.triangles << "," << fmt("%.6f", r.error_cast) << ","
-          << fmt("%.6f", r.error_self) << "," << r.cast << "," << r.self << "," << fmt("%.6f", r.error_fraction)
-          << "," << r.projection << "\n";  // render::drawn_projection: never a comma
-      results.push_back({{"scene", r.scene},
-                         {"technique", r.technique},
-                         {"shadow_map_size", r.size},
-                         {"time_ms", r.time_ms},
-                         {"time_kind", r.time_kind},
-                         {"error_visible", r.error_visible},
-                         {"error_boundary", r.error_boundary},
-                         {"error_cast", r.error_cast},
-                         {"error_self", r.error_self},
-                         {"cast_pixels", r.cast},
-                         {"self_pixels", r.self},
-                         {"visible_pixels", r.visible},
-                         {"boundary_pixels", r.boundary},
-                         {"frames", r.frames},
-                         {"triangles", r.triangles},
-                         {"error_fraction", r.error_fraction},
-                         {"projection", r.projection}});
-    }
-    std::ostringstream bcsv;
-    bcsv << "triangles,method,seconds,triangles_per_second,peak_bytes,speed_vs_meshopt,memory_vs_meshopt\n";
-    nlohmann::json bj = nlohmann::json::array();
-    for (size_t i = 0; i < bake.size(); ++i) {
-      const geombench::BakeRow& r = bake[i];
-      const geombench::BakeRow& mo = bake[i - i % 3 + 1];
-      const double sp = r.triangles_per_second / std::max(1.0, mo.triangles_per_second);
-      const double mem = mo.peak_bytes > 0 ? r.peak_bytes / mo.peak_bytes : 0.0;
-      bcsv << r.triangles << "," << r.method << "," << fmt("%.6f", r.seconds) << ","
-           << fmt("%.0f", r.triangles_per_second) << "," << fmt("%.0f", r.peak_bytes) << "," << fmt("%.3f", sp) << ","
-           << fmt("%.3f", mem) << "\n";
-      bj.push_back({{"triangles", r.triangles},
-                    {"method", r.method},
-                    {"seconds", r.seconds},
-                    {"triangles_per_second", r.triangles_per_second},
-                    {"peak_bytes", r.peak_bytes},
-                    {"speed_vs_meshopt", sp},
-                    {"memory_vs_meshopt", mem}});
-    }
-    std::vector<std::string> tech_names;
-    for (render::Technique t : techniques) tech_names.push_back(render::technique_name(t));
-    nlohmann::json j = {{"renderer", renderer},   {"timing", kind_text},
-                        {"time_kind", kind},      {"image", {{"width", width}, {"height", height}}},
-                        {"quick", quick},         {"shadow_map_sizes", sizes},
-                        {"scenes", scenes_done},  {"skipped", skipped},
-                        {"results", results},     {"bake", bj},
-                        {"best_at_budget", best}, {"goals", goal_lines}};
-    std::ostringstream md;
-    md << "# geombench summary\n\nrenderer: " << renderer << "; timing: " << kind_text << "; image " << width << "x"
-       << height << "\n\n## Best technique at each time budget\n\n";
-    for (const std::string& l : best) md << "- " << l << "\n";
-    md << "\n## Goals\n\n";
-    for (const std::string& l : goal_lines) md << "- " << l << "\n";
-    for (const std::string& l : skipped) md << "- skipped scene " << l << "\n";
-    const bool ok = write_text(out_dir + "/results.csv", csv.str()) && write_text(out_dir + "/bake.csv", bcsv.str()) &&
-                    write_text(out_dir + "/results.json", j.dump(1) + "\n") &&
-                    write_text(out_dir + "/plot.svg", plot_svg(rows, scenes_done, tech_names, kind)) &&
-                    write_text(out_dir + "/summary.md", md.str());
-    if (!ok) {
-      cli::error("%s: cannot write the results", out_dir.c_str());
-      return cli::kExitFailure;
-    }
-    std::printf("\nwrote %s/results.csv, results.json, bake.csv, plot.svg, summary.md\n", out_dir.c_str());
-  }
-  return 0;
 }

@@ -86,6 +86,7 @@
 // (which the buffer must hold). Payload bytes are little-endian: on a
 // big-endian host, swap them after reading.
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -450,6 +451,167 @@ class Reader {
   uint64_t file_size_ = 0;
   uint32_t header_crc_ = 0;
 };
+
+// ---- Float validation ------------------------------------------------------
+//
+// Reader::open() checks the container (every byte is what the writer wrote);
+// validate_floats() checks what the floats say, for a consumer that hands them
+// to a float pipeline (GL, a ray tracer): a file can be intact and still hold a
+// NaN or a coordinate of 1e30 (a hostile or buggy writer). It refuses, naming
+// the section and the element:
+//   - any non-finite float in a float section (f32, f32xN, f64x3, f64x4) or in
+//     the float fields of the records (esm_quads, volume_/light_sides,
+//     volume_/light_caps: their points);
+//   - a coordinate (positions, frame, record points, a point light's position)
+//     whose magnitude is over kMaxCoordinate;
+//   - a plane (face_planes, esm_planes, volume_/light_planes) whose normal has
+//     a component over 1 + 1e-3 or whose offset is over 2 x kMaxCoordinate;
+//   - a light (lights: x, y, z, w) whose w is neither 0 (directional) nor 1
+//     (point, as the writer stores it), that is directional with a direction
+//     shorter than kMinDirection or longer than kMaxCoordinate, or a point
+//     whose position is over kMaxCoordinate.
+// Sections of types this reader does not name are checked for finiteness only.
+//
+// The limit: every coordinate within 1e15 keeps a product of two coordinates
+// (cross products, plane offsets, squared lengths: up to 1e30) far inside a
+// float's range (3.4e38), leaves room for the projection matrices' sums, and
+// keeps a ray from a surface point to a light (up to 2e15 long) within what
+// Embree accepts (1.8e18, its ray validity check).
+inline constexpr double kMaxCoordinate = 1e15;
+inline constexpr double kMinDirection = 1e-15;  // a directional light's shortest direction
+
+namespace detail {
+inline double load_float(const unsigned char* p, bool f64) {
+  if (f64) {
+    double d;
+    std::memcpy(&d, p, 8);
+    return d;
+  }
+  float f;
+  std::memcpy(&f, p, 4);
+  return double(f);
+}
+
+// How to check one section: floats per element, where they start, what limit.
+struct FloatLayout {
+  uint32_t floats = 0;  // float values per element (0: nothing to check)
+  uint32_t first = 0;   // byte offset of the first within the element
+  bool f64 = false;
+  enum Kind { Finite, Coordinates, Planes, Lights } kind = Finite;
+};
+
+inline FloatLayout float_layout(const Section& s) {
+  FloatLayout l;
+  switch (s.format) {
+    case Format::F32:
+      l.floats = 1;
+      break;
+    case Format::F32x2:
+      l.floats = 2;
+      break;
+    case Format::F32x3:
+      l.floats = 3;
+      break;
+    case Format::F32x4:
+      l.floats = 4;
+      break;
+    case Format::F64x3:
+      l.floats = 3, l.f64 = true;
+      break;
+    case Format::F64x4:
+      l.floats = 4, l.f64 = true;
+      break;
+    case Format::Record:  // the records' points (geom/baked_records.h): floats first
+      if (s.type == SectionType::EsmQuads || s.type == SectionType::VolumeSides || s.type == SectionType::LightSides)
+        l.floats = 6, l.kind = FloatLayout::Coordinates;
+      if (s.type == SectionType::VolumeCaps || s.type == SectionType::LightCaps)
+        l.floats = 9, l.kind = FloatLayout::Coordinates;
+      if (uint64_t(l.floats) * 4 > s.stride) l.floats = 0;  // a record too short to hold them: not this layout
+      return l;
+    default:
+      return l;
+  }
+  switch (s.type) {
+    case SectionType::Positions:
+    case SectionType::Frame:
+      l.kind = FloatLayout::Coordinates;
+      break;
+    case SectionType::FacePlanes:
+    case SectionType::EsmPlanes:
+    case SectionType::VolumePlanes:
+    case SectionType::LightPlanes:
+      l.kind = l.floats == 4 ? FloatLayout::Planes : FloatLayout::Finite;
+      break;
+    case SectionType::Lights:
+      l.kind = l.floats == 4 ? FloatLayout::Lights : FloatLayout::Finite;
+      break;
+    default:
+      break;
+  }
+  return l;
+}
+
+// The problem with element values v[0..n), or "" when there is none.
+inline std::string float_problem(const double* v, uint32_t n, FloatLayout::Kind kind) {
+  char b[160];
+  for (uint32_t k = 0; k < n; ++k)
+    if (!std::isfinite(v[k])) return std::snprintf(b, sizeof b, "component %u is %g", k, v[k]), b;
+  const double limit = kMaxCoordinate;
+  if (kind == FloatLayout::Coordinates)
+    for (uint32_t k = 0; k < n; ++k)
+      if (std::fabs(v[k]) > limit)
+        return std::snprintf(b, sizeof b, "component %u is %g, over the coordinate limit %g", k, v[k], limit), b;
+  if (kind == FloatLayout::Planes) {
+    for (uint32_t k = 0; k < 3; ++k)
+      if (std::fabs(v[k]) > 1.001)
+        return std::snprintf(b, sizeof b, "plane normal component %u is %g, not within a unit normal", k, v[k]), b;
+    if (std::fabs(v[3]) > 2 * limit)
+      return std::snprintf(b, sizeof b, "plane offset %g is over the limit %g", v[3], 2 * limit), b;
+  }
+  if (kind == FloatLayout::Lights) {
+    const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (v[3] == 0 && !(length >= kMinDirection && length <= limit))
+      return std::snprintf(b, sizeof b, "directional light direction of length %g, not within [%g, %g]", length,
+                           kMinDirection, limit),
+             b;
+    if (v[3] != 0 && v[3] != 1)
+      return std::snprintf(b, sizeof b, "light w is %g, neither 0 (directional) nor 1 (point)", v[3]), b;
+    for (uint32_t k = 0; v[3] == 1 && k < 3; ++k)
+      if (std::fabs(v[k]) > limit)
+        return std::snprintf(b, sizeof b, "point light coordinate %u is %g, over the coordinate limit %g", k, v[k],
+                             limit),
+               b;
+  }
+  return "";
+}
+}  // namespace detail
+
+// Checks the floats of one section (see above). False with `error`: "section
+// I 'NAME' (TYPE): element E: PROBLEM".
+inline bool validate_section_floats(const Section& s, size_t index, std::string& error) {
+  const detail::FloatLayout l = detail::float_layout(s);
+  if (l.floats == 0 || !s.data) return true;
+  const uint32_t width = l.f64 ? 8 : 4;
+  double v[16];
+  for (uint64_t e = 0; e < s.count; ++e) {
+    const unsigned char* p = s.data + e * s.stride + l.first;
+    for (uint32_t k = 0; k < l.floats; ++k) v[k] = detail::load_float(p + size_t(k) * width, l.f64);
+    const std::string problem = detail::float_problem(v, l.floats, l.kind);
+    if (!problem.empty()) {
+      error = "section " + std::to_string(index) + " '" + s.name + "' (" + type_name(s.type) + "): element " +
+              std::to_string(e) + ": " + problem;
+      return false;
+    }
+  }
+  return true;
+}
+
+// Checks the floats of every section of an opened reader.
+inline bool validate_floats(const Reader& reader, std::string& error) {
+  for (size_t i = 0; i < reader.sections().size(); ++i)
+    if (!validate_section_floats(reader.sections()[i], i, error)) return false;
+  return true;
+}
 
 }  // namespace baked
 }  // namespace geom

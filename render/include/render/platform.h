@@ -32,4 +32,21 @@ class Platform {
   virtual std::string description() const = 0;                   // "EGL surfaceless: llvmpipe ..." etc.
 };
 
+// What the current context can hold, queried from it (glGetIntegerv): the
+// largest texture, cube-map face, renderbuffer and viewport. The apps check
+// image, grid and shadow-map sizes against them before any work.
+struct GlLimits {
+  int max_texture = 0, max_cube_map = 0, max_renderbuffer = 0, max_viewport[2] = {0, 0};
+  // The largest width or height an image target can have (texture, renderbuffer, viewport).
+  int max_image_width() const;
+  int max_image_height() const;
+};
+GlLimits gl_limits();
+
+// The current context's pending GL errors, cleared: "" when none, else e.g.
+// "OpenGL error 0x505 (GL_OUT_OF_MEMORY: out of GPU memory)". The apps check
+// it after uploading a scene, so an upload the driver could not hold is an
+// Error, not an empty image.
+std::string gl_error_text();
+
 }  // namespace render
