@@ -17,6 +17,7 @@
 #include "cli/file.h"
 #include "cli/output.h"
 #include "cli/view_check.h"
+#include "geom/baked_file.h"
 #include "geom/baked_reader.h"
 #include "geom/import.h"
 
