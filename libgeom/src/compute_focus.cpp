@@ -213,7 +213,8 @@ bool compute_focus(const CameraMatrices& camera, const Light& light, const Focus
   out.vertices.clear();
   out.face_sizes.clear();
   out.face_indices.clear();
-  for (FocusFace& f : out.cube_faces) f = FocusFace(), std::copy(id.m, id.m + 16, f.matrix), std::copy(id.m, id.m + 16, f.focused);
+  for (FocusFace& f : out.cube_faces)
+    f = FocusFace(), std::copy(id.m, id.m + 16, f.matrix), std::copy(id.m, id.m + 16, f.focused);
   try {
     thread_local Frame fr;
     if (!single_focus(camera, light, scene, options, fr, out)) return false;

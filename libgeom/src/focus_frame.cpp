@@ -73,8 +73,8 @@ bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const Fo
     return false;
   }
   if (!(opt.psm_min_near_ratio >= 0 && opt.psm_min_near_ratio < 1) || !(opt.lispsm_n_scale > 0) ||
-      !(opt.min_warp_gain >= 0 && opt.min_warp_gain <= 1) ||
-      !std::isfinite(opt.lispsm_n_scale) || int(opt.method) > 2) {
+      !(opt.min_warp_gain >= 0 && opt.min_warp_gain <= 1) || !std::isfinite(opt.lispsm_n_scale) ||
+      int(opt.method) > 2) {
     out.reason =
         "the options are out of range (psm_min_near_ratio in [0, 1), lispsm_n_scale > 0, min_warp_gain in [0, 1])";
     return false;

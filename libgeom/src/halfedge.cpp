@@ -299,7 +299,8 @@ HalfedgeSummary replay_add_face(PositionSpan positions, const uint32_t* indices,
     }
     ++steps;
     const AddFaceReplay::Step step = replay.add(f, indices + 3 * f);
-    if (step == AddFaceReplay::Step::Lost) throw std::logic_error("the half-edge summary lost a link of its replay (a bug)");
+    if (step == AddFaceReplay::Step::Lost)
+      throw std::logic_error("the half-edge summary lost a link of its replay (a bug)");
     ++(step == AddFaceReplay::Step::Added ? s.added_faces : s.refused_faces);
   }
   s.boundary_loops = replay.count_holes(steps);

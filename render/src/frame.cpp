@@ -36,8 +36,8 @@ GLuint shading_program(Frame& f) {
   State& s = f.s;
   std::vector<std::string> files = {"scene.vert", "shade.frag", f.lookup};
   const bool linear_depth = f.lookup.rfind("lookup_focused", 0) == 0;  // the focused maps' lookups
-  if (linear_depth) files.push_back("light_depth.frag");                 // their light_depth()
-  if (f.faces) files.push_back("lookup_faces.frag");                     // 1 or 6 faces: face_clip()
+  if (linear_depth) files.push_back("light_depth.frag");               // their light_depth()
+  if (f.faces) files.push_back("lookup_faces.frag");                   // 1 or 6 faces: face_clip()
   if (!f.lookup_extra.empty()) files.push_back(f.lookup_extra);
   GLuint p = program(s.programs, files, f.error);
   if (!p) return 0;

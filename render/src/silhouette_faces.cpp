@@ -82,8 +82,8 @@ bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& lig
     if (!drawn(f.face_clip[i])) continue;
     if (!draw_face(f, f.face_clip[i])) return false;
     copy_depth(s, n, i);
-    glCopyImageSubData(s.edge_map.color, GL_TEXTURE_2D, 0, 0, 0, 0, s.face_edges, GL_TEXTURE_2D_ARRAY, 0, 0, 0, i, n,
-                       n, 1);
+    glCopyImageSubData(s.edge_map.color, GL_TEXTURE_2D, 0, 0, 0, 0, s.face_edges, GL_TEXTURE_2D_ARRAY, 0, 0, 0, i, n, n,
+                       1);
   }
   f.shadow_texture = s.face_depth;
   f.second_texture = s.face_edges;

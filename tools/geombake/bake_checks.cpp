@@ -135,12 +135,12 @@ bool check_writes(const std::vector<std::pair<std::string, std::vector<std::stri
                    path.c_str());
       ok = false;
     } else if (!clash.empty()) {
-      std::fprintf(stderr, "Error: %s: %s %s is %s: refused (inputs are never written)\n", who.c_str(),
-                   what.c_str(), path.c_str(), clash.c_str());
+      std::fprintf(stderr, "Error: %s: %s %s is %s: refused (inputs are never written)\n", who.c_str(), what.c_str(),
+                   path.c_str(), clash.c_str());
       ok = false;
     } else if (p.exists && (is_asset_name(path) || is_asset_name(p.path))) {
-      std::fprintf(stderr, "Error: %s: %s %s is a mesh file, an input to read, never written: refused\n",
-                   who.c_str(), what.c_str(), path.c_str());
+      std::fprintf(stderr, "Error: %s: %s %s is a mesh file, an input to read, never written: refused\n", who.c_str(),
+                   what.c_str(), path.c_str());
       ok = false;
     } else if (!(clash = outputs.find(p)).empty()) {
       std::fprintf(stderr, "Error: %s: %s %s is also %s: refused\n", who.c_str(), what.c_str(), path.c_str(),

@@ -131,15 +131,14 @@ bool parse_run_flags(const cli::Args& args, BakeConfig& c) {
 
 int parse_bake_flags(const std::vector<std::string>& argv, const char* help, BakeConfig& config) {
   constexpr unsigned kShared = kImportFlags | kPipelineFlags | kLimitFlags;
-  cli::Args args(split_jobs_flag(argv),
-                 with_shared_flags({"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap",
-                                    "--no-planes", "--no-topology", "--no-esm", "--no-volume", "--no-adjacency",
-                                    "--no-scene-lights", "--one-sided-closed", "-q", "--quiet", "--force", "--prune",
-                                    "--stable-report"},
-                                   kShared, false),
-                 with_shared_flags({"-o", "-j", "--depfile", "--depfile-target", "--light", "--list", "-r",
-                                    "--progress"},
-                                   kShared, true));
+  cli::Args args(
+      split_jobs_flag(argv),
+      with_shared_flags({"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
+                         "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights",
+                         "--one-sided-closed", "-q", "--quiet", "--force", "--prune", "--stable-report"},
+                        kShared, false),
+      with_shared_flags({"-o", "-j", "--depfile", "--depfile-target", "--light", "--list", "-r", "--progress"}, kShared,
+                        true));
   if (args.has("--help") || args.has("-h")) {
     std::printf("geombake %s\n", GEOM_VERSION);
     std::fputs(help, stdout);
@@ -203,8 +202,8 @@ int plan_output(BakeConfig& config, bool folder) {
     return 2;
   }
   std::error_code ec;
-  config.out_is_dir = config.out_is_dir || folder || fs::is_directory(out, ec) || config.named.size() > 1 ||
-                      out.back() == '/';
+  config.out_is_dir =
+      config.out_is_dir || folder || fs::is_directory(out, ec) || config.named.size() > 1 || out.back() == '/';
   if (!config.out_is_dir) {
     const std::string problem = output_problem(out);
     if (!problem.empty()) {

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -11,7 +12,6 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <algorithm>
 
 #include "geom/atomic_file.h"
 #include "geom/version.h"
@@ -56,8 +56,8 @@ bool settle_outputs(std::vector<Job>& jobs, const BakeConfig& config, std::vecto
     struct stat st {};
     if (::lstat(job.output.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) continue;  // none, or not a file of ours
     if (::unlink(job.output.c_str()) != 0 && errno != ENOENT) {
-      std::fprintf(stderr, "Error: %s: cannot remove the stale output %s: %s\n", job.input.c_str(),
-                   job.output.c_str(), std::strerror(errno));
+      std::fprintf(stderr, "Error: %s: cannot remove the stale output %s: %s\n", job.input.c_str(), job.output.c_str(),
+                   std::strerror(errno));
       ok = false;
     }
   }
@@ -154,8 +154,7 @@ nlohmann::ordered_json job_json(const Job& job, bool stable) {
   nlohmann::ordered_json j = {{"input", job.input}, {"output", job.output}, {"ok", job.done}};
   if (!job.done) j["error"] = job.error, j["error_kind"] = error_kind_name(job.kind);
   nlohmann::ordered_json reads = nlohmann::ordered_json::array();
-  for (const std::string& file : job.reads)
-    reads.push_back({{"file", file}, {"sha256", file_sha256(file)}});
+  for (const std::string& file : job.reads) reads.push_back({{"file", file}, {"sha256", file_sha256(file)}});
   j["sha256"] = reads[0]["sha256"];
   j["reads"] = std::move(reads);
   if (!stable) j["seconds"] = double(int64_t(job.seconds * 1e6)) * 1e-6;
@@ -249,8 +248,8 @@ int report_run(std::vector<Job>& jobs, const BakeConfig& config, const ScheduleS
     if (!write_or_say(config.depfile, text)) status = 1;
   }
   if (!config.report.empty()) {
-    nlohmann::ordered_json report = {{"geombake", GEOM_VERSION}, {"output", config.out},
-                                     {"inputs", jobs.size()},    {"baked", jobs.size() - n.failed}};
+    nlohmann::ordered_json report = {
+        {"geombake", GEOM_VERSION}, {"output", config.out}, {"inputs", jobs.size()}, {"baked", jobs.size() - n.failed}};
     if (!config.stable) report["unchanged"] = n.unchanged;
     report["failed"] = n.failed;
     report["timed_out"] = stats.timed_out;
