@@ -23,7 +23,7 @@ struct ErrorFigures {
 
 struct Figures {
   render::Technique technique = render::Technique::Ssm;
-  int map_size = 0;  // 0: a technique without a map
+  int map_size = 0;        // 0: a technique without a map
   std::string projection;  // what the frame drew (render::drawn_projection): "6 faces", "lispsm n=2.1"...
   std::vector<render::PassTime> times;
   bool gpu_timers = false;
@@ -36,7 +36,8 @@ struct Figures {
 double shadow_ms(const std::vector<render::PassTime>& times);
 double total_ms(const std::vector<render::PassTime>& times);
 
-// The HUD's lines: "pcf 1024 | 6 faces" (technique, map size, the projection drawn); "shadow 1.23 ms, frame 2.50 ms (GPU)", or
+// The HUD's lines: "pcf 1024 | 6 faces" (technique, map size, the projection drawn); "shadow 1.23 ms, frame 2.50 ms
+// (GPU)", or
 // "(wall)" for wall time around glFinish on a software rasterizer; the
 // error_lines; then each pass's time.
 std::vector<std::string> hud_lines(const Figures& f, bool passes = true);

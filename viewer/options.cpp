@@ -231,8 +231,7 @@ int parse_options(int argc, char** argv, Options& o) {
     return 0;
   }
   if (args.positional().size() > 1) return fail("one input file at most"), cli::kExitUsage;
-  o.file = !args.positional().empty() ? args.positional()[0]
-                                      : beside_binary("default_scene.gltf");
+  o.file = !args.positional().empty() ? args.positional()[0] : beside_binary("default_scene.gltf");
   std::string error;
   if (!parse_modes(args, o, error) || !parse_values(args, o, error)) return fail(error), cli::kExitUsage;
   return -1;

@@ -262,8 +262,8 @@ int run_focus(const std::vector<std::string>& argv) {
       o += std::string(f ? ",\n" : "\n") + "    {\"matrix\": [";
       for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(face.matrix[i]);
       o += "], \"near\": " + num(face.near) + ", \"far\": " + num(face.far) +
-           ", \"empty\": " + (face.empty ? "true" : "false") + ", \"method\": " +
-           str(geom::focus_method_name(face.method)) + ", \"focused\": [";
+           ", \"empty\": " + (face.empty ? "true" : "false") +
+           ", \"method\": " + str(geom::focus_method_name(face.method)) + ", \"focused\": [";
       for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(face.focused[i]);
       o += "]}";
     }

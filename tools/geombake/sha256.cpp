@@ -33,7 +33,8 @@ struct Sha256 {
 
   void compress(const unsigned char* p) {
     uint32_t w[64];
-    for (int i = 0; i < 16; ++i) w[i] = uint32_t(p[4 * i]) << 24 | uint32_t(p[4 * i + 1]) << 16 | uint32_t(p[4 * i + 2]) << 8 | p[4 * i + 3];
+    for (int i = 0; i < 16; ++i)
+      w[i] = uint32_t(p[4 * i]) << 24 | uint32_t(p[4 * i + 1]) << 16 | uint32_t(p[4 * i + 2]) << 8 | p[4 * i + 3];
     for (int i = 16; i < 64; ++i) {
       const uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
       const uint32_t s1 = rotr(w[i - 2], 17) ^ rotr(w[i - 2], 19) ^ (w[i - 2] >> 10);
@@ -84,8 +85,10 @@ std::string file_sha256(const std::string& path) {
   std::vector<unsigned char> buffer(1 << 16);
   bool ok = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
   for (ssize_t n; ok && (n = ::read(fd, buffer.data(), buffer.size())) != 0;) {
-    if (n < 0) ok = false;
-    else sha.update(buffer.data(), size_t(n));
+    if (n < 0)
+      ok = false;
+    else
+      sha.update(buffer.data(), size_t(n));
   }
   ::close(fd);
   return ok ? sha.hex() : "";

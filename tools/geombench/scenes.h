@@ -10,10 +10,10 @@
 //   duelling   the same alley, light facing the camera ("duelling frusta", Stamminger and Drettakis 2002)
 //   grazing    blocks on a ground, a directional light 3 degrees above the ground plane
 //   scan       the Stanford bunny (a real scan, tests/data/draco/bunny_gltf.drc) on a ground
-//   colonnade  a 200 m colonnade of round pillars seen from one end, a sun from the side (wide depth, lit from the side)
-//   behind     the same colonnade, a point light behind and above the camera
-//   near-plane the default scene seen with its near plane 6 units from the eye, inside a shadow (shadow volumes)
-//   quake3     OpenArena's oa_dm1 (Debian's openarena-081-maps), a point light inside the level
+//   colonnade  a 200 m colonnade of round pillars seen from one end, a sun from the side (wide depth, lit from the
+//   side) behind     the same colonnade, a point light behind and above the camera near-plane the default scene seen
+//   with its near plane 6 units from the eye, inside a shadow (shadow volumes) quake3     OpenArena's oa_dm1 (Debian's
+//   openarena-081-maps), a point light inside the level
 #pragma once
 #include <string>
 #include <vector>
