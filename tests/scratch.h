@@ -39,4 +39,28 @@ inline void write_all(const std::string& path, const std::vector<unsigned char>&
   f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
+// The CLI tests' folders: one per process (PREFIX_PID under the temp
+// directory, removed when the process exits) holding one folder per test
+// case, emptied on each call. The first call names the process folder.
+inline std::filesystem::path case_dir(const std::string& prefix, const std::string& tag) {
+  struct Root {
+    std::filesystem::path dir;
+    ~Root() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  };
+  static const Root root{std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()))};
+  std::filesystem::path d = root.dir / tag;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+// Writes `text` to `path`, making its folder first.
+inline void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
 }  // namespace testfs

@@ -14,8 +14,8 @@
 //     the archives it finds; an OBJ without a face is an error; --list -.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <zip.h>
 #include <unistd.h>
+#include <zip.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -26,6 +26,7 @@
 
 #include "cli_run.h"
 #include "geom/import.h"
+#include "scratch.h"
 
 namespace fs = std::filesystem;
 
@@ -34,24 +35,9 @@ namespace {
 const std::string kData = GEOM_TEST_DATA;
 const std::string kBox = kData + "/draco/Box/glTF/Box.gltf";
 
-fs::path scratch(const std::string& tag) {
-  static const fs::path root = fs::temp_directory_path() / ("geom_step_" + std::to_string(::getpid()));
-  fs::path d = root / tag;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-struct Cleanup {
-  ~Cleanup() {
-    std::error_code ec;
-    fs::remove_all(fs::temp_directory_path() / ("geom_step_" + std::to_string(::getpid())), ec);
-  }
-} cleanup;
+fs::path scratch(const std::string& tag) { return testfs::case_dir("geom_step", tag); }
 
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-}
+void write(const fs::path& p, const std::string& text) { testfs::write_text(p, text); }
 
 const char* kCube =
     "OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
@@ -96,8 +82,11 @@ TEST(BuildStep, InputsAreNeverWritten) {
   // Spellings of sub/b.off: as given, with `..` and `.`, through a symlinked
   // folder, a symlink to it, a hard link to it, relative to the working folder.
   const std::vector<std::string> spellings = {
-      b, (d / "sub" / ".." / "sub" / "." / "b.off").string(), (d / "linkdir" / "b.off").string(),
-      (d / "link.json").string(), (d / "hard.json").string(),
+      b,
+      (d / "sub" / ".." / "sub" / "." / "b.off").string(),
+      (d / "linkdir" / "b.off").string(),
+      (d / "link.json").string(),
+      (d / "hard.json").string(),
       (fs::relative(d / "sub", fs::current_path()) / ".." / "sub" / "b.off").string()};
   std::vector<std::vector<std::string>> cases;
   for (const std::string& s : spellings) {
@@ -118,8 +107,8 @@ TEST(BuildStep, InputsAreNeverWritten) {
   cases.push_back({"bake", (d / "Box.gltf").string(), "-o", (d / "Box0.bin").string()});
   cases.push_back({"info", (d / "Box.gltf").string(), "-o", (d / "Box0.bin").string()});
   cases.push_back({"bake", a, "-o", (d / "x.gbake").string(), "-r", (d / "x.gbake").string()});
-  cases.push_back({"bake", a, "-o", (d / "out").string(), "-r", (d / "r.txt").string(), "--depfile",
-                   (d / "." / "r.txt").string()});
+  cases.push_back(
+      {"bake", a, "-o", (d / "out").string(), "-r", (d / "r.txt").string(), "--depfile", (d / "." / "r.txt").string()});
   cases.push_back({"bake", a, "-o", (d / "out/").string(), "--depfile", (d / "out" / "a.off.gbake").string()});
   const Snapshot box(d / "Box0.bin"), before(d / "sub" / "b.off");
   for (const auto& args : cases) {
@@ -175,9 +164,16 @@ TEST(BuildStep, FailedInputLeavesNoStaleOutput) {
   for (int round = 0; round < 12; ++round) {
     write(d / "Box0.bin", bin);
     write(d / "cube.off", kCube);
-    const std::vector<std::string> args = {"bake", (d / "Box.gltf").string(), (d / "cube.off").string(),
-                                           (d / "other.off").string(), "-o", (d / "out").string(),
-                                           "--depfile", (d / "out.d").string(), "-j", "2"};
+    const std::vector<std::string> args = {"bake",
+                                           (d / "Box.gltf").string(),
+                                           (d / "cube.off").string(),
+                                           (d / "other.off").string(),
+                                           "-o",
+                                           (d / "out").string(),
+                                           "--depfile",
+                                           (d / "out.d").string(),
+                                           "-j",
+                                           "2"};
     cli::Run r = cli::run(args, d / "log", 60);
     ASSERT_EQ(r.exit_code, 0) << cli::describe(r);
     ASSERT_TRUE(fs::exists(d / "out" / "Box.gltf.gbake"));
@@ -237,27 +233,28 @@ TEST(BuildStep, DepfileTarget) {
   write(d / "bad.off", "OFF\n");
   const std::string stamp = (d / "assets stamp").string();
   const cli::Run r = cli::run({"bake", (d / "Box.gltf").string(), (d / "cube.off").string(), (d / "bad.off").string(),
-                               (d / "cube.off").string(), "-o", (d / "out").string(), "--depfile",
-                               (d / "x.d").string(), "--depfile-target", stamp},
+                               (d / "cube.off").string(), "-o", (d / "out").string(), "--depfile", (d / "x.d").string(),
+                               "--depfile-target", stamp},
                               d / "log");
   EXPECT_EQ(r.exit_code, 1) << cli::describe(r);
   const std::string dir = d.string();
   EXPECT_EQ(cli::slurp(d / "x.d"), dir + "/assets\\ stamp: " + dir + "/Box.gltf " + dir + "/Box0.bin " + dir +
                                        "/cube.off " + dir + "/bad.off\n");
   // Without --depfile it names nothing: a usage error.
-  EXPECT_EQ(cli::run({"bake", (d / "cube.off").string(), "-o", (d / "c.gbake").string(), "--depfile-target", "s"},
-                     d / "log")
-                .exit_code,
-            2);
+  EXPECT_EQ(
+      cli::run({"bake", (d / "cube.off").string(), "-o", (d / "c.gbake").string(), "--depfile-target", "s"}, d / "log")
+          .exit_code,
+      2);
 }
 
 // Names that Make or Ninja misread in a depfile get a warning naming who
 // misreads them; the bake still succeeds and the depfile is written.
 TEST(BuildStep, DepfileNameWarnings) {
   const fs::path d = scratch("hazard");
-  const std::vector<std::pair<std::string, std::string>> names = {
-      {"a:b.off", "':', which Make"}, {"c;d.off", "';', which Make"}, {"e%f.off", "'%', which Make"},
-      {"g\th.off", "a tab, which Make and Ninja"}};
+  const std::vector<std::pair<std::string, std::string>> names = {{"a:b.off", "':', which Make"},
+                                                                  {"c;d.off", "';', which Make"},
+                                                                  {"e%f.off", "'%', which Make"},
+                                                                  {"g\th.off", "a tab, which Make and Ninja"}};
   std::vector<std::string> args = {"bake", "-o", (d / "out").string(), "--depfile", (d / "x.d").string()};
   for (const auto& [name, why] : names) {
     write(d / name, kCube);
@@ -293,8 +290,8 @@ TEST(BuildStep, DirectoryWalkBakesArchives) {
   const fs::path d = scratch("pk3");
   std::vector<unsigned char> map;
   std::string error;
-  ASSERT_TRUE(geom::read_archive_member("/usr/share/games/openarena/baseoa/pak1-maps.pk3", "maps/oa_ctf2.bsp", map, 0,
-                                        error))
+  ASSERT_TRUE(
+      geom::read_archive_member("/usr/share/games/openarena/baseoa/pak1-maps.pk3", "maps/oa_ctf2.bsp", map, 0, error))
       << error;
   fs::create_directories(d / "in" / "sub");
   int err = 0;

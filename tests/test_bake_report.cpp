@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "scratch.h"
 
 namespace fs = std::filesystem;
 
@@ -29,24 +30,9 @@ namespace {
 
 const std::string kData = GEOM_TEST_DATA;
 
-fs::path scratch(const std::string& tag) {
-  static const fs::path root = fs::temp_directory_path() / ("geom_report_" + std::to_string(::getpid()));
-  fs::path d = root / tag;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-struct Cleanup {
-  ~Cleanup() {
-    std::error_code ec;
-    fs::remove_all(fs::temp_directory_path() / ("geom_report_" + std::to_string(::getpid())), ec);
-  }
-} cleanup;
+fs::path scratch(const std::string& tag) { return testfs::case_dir("geom_report", tag); }
 
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << text;
-}
+void write(const fs::path& p, const std::string& text) { testfs::write_text(p, text); }
 
 const char* kCube =
     "OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
@@ -98,7 +84,8 @@ TEST(BakeReport, ErrorKinds) {
   write(d / "in" / "binary.off", "OFF BINARY\n");
   write(d / "in" / "big.off", sphere_off(30));
   write(d / "in" / "odd.xyz", "not a mesh\n");
-  write(d / "in" / "gl.gltf", "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"missing.bin\",\"byteLength\":4}]}");
+  write(d / "in" / "gl.gltf",
+        "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"missing.bin\",\"byteLength\":4}]}");
   fs::create_symlink("/dev/null", d / "in" / "device.off");
   write(d / "in" / "x.off", kCube);
   fs::create_directories(d / "out" / "x.off.gbake");  // a folder where its output would go
@@ -113,8 +100,8 @@ TEST(BakeReport, ErrorKinds) {
       {"missing.off", "not_found"},
       {"x.off", "write_failed"},
   };
-  std::vector<std::string> args = {"bake", "-o", (d / "out").string(), "--max-triangles", "1000", "-r",
-                                   (d / "r.json").string(), "-j", "1"};
+  std::vector<std::string> args = {
+      "bake", "-o", (d / "out").string(), "--max-triangles", "1000", "-r", (d / "r.json").string(), "-j", "1"};
   for (const auto& [name, kind] : expected) args.push_back((d / "in" / name).string());
   const cli::Run r = cli::run(args, d / "log", 60);
   ASSERT_EQ(r.exit_code, 1) << cli::describe(r);
@@ -127,12 +114,12 @@ TEST(BakeReport, ErrorKinds) {
   }
   // Memory and time, each on its own: the estimate over --max-memory, and a mesh over --timeout.
   write(d / "in" / "huge.off", sphere_off(200));
-  for (const auto& [flag, value, kind] : {std::tuple<std::string, std::string, std::string>{"--max-memory", "64K",
-                                                                                            "limit_memory"},
-                                          {"--timeout", "0.001", "timeout"}}) {
-    const cli::Run m = cli::run({"bake", (d / "in" / "huge.off").string(), "-o", (d / "huge.gbake").string(), flag,
-                                 value, "--json"},
-                                d / "log", 60);
+  for (const auto& [flag, value, kind] :
+       {std::tuple<std::string, std::string, std::string>{"--max-memory", "64K", "limit_memory"},
+        {"--timeout", "0.001", "timeout"}}) {
+    const cli::Run m =
+        cli::run({"bake", (d / "in" / "huge.off").string(), "-o", (d / "huge.gbake").string(), flag, value, "--json"},
+                 d / "log", 60);
     EXPECT_EQ(m.exit_code, 1) << cli::describe(m);
     const nlohmann::json j = nlohmann::json::parse(m.out.substr(0, m.out.find('\n')));
     EXPECT_EQ(j["error_kind"], kind) << m.out;
@@ -204,8 +191,9 @@ TEST(BakeReport, StableReportAcrossReruns) {
     for (int run = 0; run < 2; ++run) {
       fs::remove_all(d / "out" / std::to_string(stable));
       for (int again = 0; again < 1 + run; ++again) {
-        std::vector<std::string> args = {"bake", (d / "in").string(), "-o", (d / "out" / std::to_string(stable)).string(),
-                                         "-r", (d / "r.json").string(), "-j", std::to_string(1 + again)};
+        std::vector<std::string> args = {
+            "bake", (d / "in").string(),     "-o", (d / "out" / std::to_string(stable)).string(),
+            "-r",   (d / "r.json").string(), "-j", std::to_string(1 + again)};
         if (stable) args.push_back("--stable-report");
         EXPECT_EQ(cli::run(args, d / "log", 60).exit_code, 1);
       }

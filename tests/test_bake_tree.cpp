@@ -25,6 +25,7 @@
 
 #include "cli_run.h"
 #include "geom/version.h"
+#include "scratch.h"
 
 namespace fs = std::filesystem;
 
@@ -33,19 +34,7 @@ namespace {
 const std::string kData = GEOM_TEST_DATA;
 const std::string kAssimp = "/usr/share/assimp/models";
 
-fs::path scratch(const std::string& tag) {
-  static const fs::path root = fs::temp_directory_path() / ("geom_tree_" + std::to_string(::getpid()));
-  fs::path d = root / tag;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-struct Cleanup {
-  ~Cleanup() {
-    std::error_code ec;
-    fs::remove_all(fs::temp_directory_path() / ("geom_tree_" + std::to_string(::getpid())), ec);
-  }
-} cleanup;
+fs::path scratch(const std::string& tag) { return testfs::case_dir("geom_tree", tag); }
 
 void copy(const std::string& from, const fs::path& to) {
   fs::create_directories(to.parent_path());
