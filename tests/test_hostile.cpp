@@ -505,6 +505,37 @@ TEST(Hostile, TimedOutWorkIsStopped) {
   }
 }
 
+// Wherever --timeout lands in an input's work (a destructor that allocates
+// included: nlohmann::json's does, and may not throw), the run ends as the
+// contract says: exit 1, the input named as timed out, the other input baked,
+// never a signal. Limits spread over the slow input's whole time.
+TEST(Hostile, TimeoutAnywhereEndsCleanly) {
+  const fs::path d = scratch("anywhere");
+  const int n = cli::kSanitizerFactor > 1 ? 50000 : 200000;
+  std::string nodes = "{\"mesh\":0}", roots = "0";
+  for (int i = 1; i < n; ++i) {
+    nodes += ",{\"mesh\":0,\"translation\":[" + std::to_string(i) + ",0,0]}";
+    roots += "," + std::to_string(i);
+  }
+  write(d / "slow.gltf", triangle_gltf("", ",\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[" + roots + "]}]"));
+  write(d / "quick.obj", grid_obj(4));
+  const cli::Run slow = cli::run({"bake", (d / "slow.gltf").string(), "-o", (d / "slow.gbake").string()}, d, 120);
+  ASSERT_EQ(slow.exit_code, 0) << cli::describe(slow);
+  constexpr int kLimits = 16;
+  for (int i = 0; i < kLimits; ++i) {
+    const double limit = slow.wall_seconds * (0.05 + 0.9 * i / (kLimits - 1));
+    const fs::path out = d / ("o" + std::to_string(i));
+    const cli::Run r = cli::run({"bake", "-j", "1", "-o", out.string(), (d / "slow.gltf").string(),
+                                 (d / "quick.obj").string(), "--timeout", std::to_string(limit)},
+                                d, 120);
+    if (r.exit_code == 0) continue;  // the machine ran it faster than alone: nothing timed out
+    EXPECT_EQ(r.exit_code, 1) << "limit " << limit << " s: " << cli::describe(r);
+    EXPECT_TRUE(has(r.err, "slow.gltf: timed out after")) << r.err;
+    EXPECT_FALSE(has(r.err, "terminate")) << r.err;
+    EXPECT_EQ(cli::listing(out).size(), 1u) << r.err;  // the quick input's output alone
+  }
+}
+
 // --max-memory bounds what is really allocated, not an estimate from the
 // triangle count: an OBJ of 2M vertices and one face is refused while it is
 // imported; an MD3 whose surfaces share their triangles to claim millions is

@@ -27,7 +27,8 @@ struct SectionInfo {
 };
 
 // Watchdog states (--timeout): kPending -> kRunning -> kWriting -> kFinished,
-// or kRunning -> kTimedOut (set by the watchdog: the worker's result is dropped).
+// or kRunning -> kTimedOut (set by the watchdog, or for a thread a refusal
+// parked (fault.h): the worker's result is dropped).
 enum JobState { kPending, kRunning, kWriting, kFinished, kTimedOut };
 
 struct Job {

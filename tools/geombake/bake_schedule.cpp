@@ -132,6 +132,23 @@ struct Pool {
     }
   }
 
+  // Gives up on the jobs whose thread a refusal parked (fault.h): failed as the
+  // refusal says; a new worker takes the parked one's place (under `mutex`).
+  void reap() {
+    for (Job& job : jobs) {
+      int state = job.state;
+      if (!job.budget.parked || (state != kRunning && state != kWriting) ||
+          !job.state.compare_exchange_strong(state, kTimedOut))
+        continue;
+      job.error = refusal_cause(job.input, job.budget);
+      job.kind = ErrorKind::LimitMemory;  // a cancelled job is already kTimedOut
+      job.seconds = double(now_ns() - job.started_ns) * 1e-9;
+      announcer.finished(job, ++finished);
+      stuck[job.worker] = true;
+      if (next < jobs.size()) start();
+    }
+  }
+
   void start() {
     const size_t self = threads.size();
     stuck.push_back(false);
@@ -151,6 +168,7 @@ ScheduleStats run_jobs(std::vector<Job>& jobs, const BakeConfig& config) {
     while (pool.finished < jobs.size()) {
       pool.changed.wait_for(lock, std::chrono::milliseconds(config.limits.timeout > 0 ? 10 : 200));
       if (config.limits.timeout > 0) pool.watch();
+      pool.reap();
     }
   }
   for (size_t t = 0; t < pool.threads.size(); ++t) pool.stuck[t] ? pool.threads[t].detach() : pool.threads[t].join();

@@ -42,9 +42,35 @@ inline bool charge(void* p) {
   return true;
 }
 
+std::terminate_handler g_previous_terminate = nullptr;
+
+// std::terminate on a thread whose budget refused: a refusal reached a frame
+// that may not throw. The work is over but the process is not: the thread is
+// marked parked and blocked for good (fault.h); any other terminate is the
+// default one.
+[[noreturn]] void park_or_terminate() {
+  Budget* b = t_budget;
+  if (b && (b->cancelled.load() || b->exceeded.load())) {
+    b->parked.store(true);
+    for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+  }
+  if (g_previous_terminate) g_previous_terminate();
+  std::abort();
+}
+
 }  // namespace
 
-void enable_budgets() { g_enabled.store(true); }
+void enable_budgets() {
+  if (!g_enabled.exchange(true)) g_previous_terminate = std::set_terminate(&park_or_terminate);
+}
+
+std::string refusal_cause(const std::string& input, const Budget& budget) {
+  if (budget.cancelled) return input + ": abandoned (--timeout)";
+  if (budget.exceeded)
+    return input + ": needs more memory than allowed, over the limit of " + std::to_string(budget.limit) +
+           " (--max-memory)";
+  return input + ": out of memory";
+}
 
 BudgetScope::BudgetScope(Budget* b) : previous_(t_budget) { t_budget = b; }
 BudgetScope::~BudgetScope() { t_budget = previous_; }
@@ -76,21 +102,14 @@ std::string guarded(const std::string& input, Budget& budget, const std::functio
     BudgetScope scope(&budget);
     error = work();
   } catch (const std::bad_alloc&) {
-    // The scope has ended: the message itself is not charged.
-    if (budget.cancelled) return input + ": abandoned (--timeout)";
-    if (budget.exceeded)
-      return input + ": needs more memory than allowed, over the limit of " + std::to_string(budget.limit) +
-             " (--max-memory)";
-    return input + ": out of memory";
+    return refusal_cause(input, budget);  // the scope has ended: the message itself is not charged
   } catch (const std::exception& e) {
     return input + ": " + e.what();
   } catch (...) {
     return input + ": unknown exception";
   }
   // A library that caught the bad_alloc itself (the importers do) said "out of memory": say which limit.
-  if (!error.empty() && budget.exceeded)
-    return input + ": needs more memory than allowed, over the limit of " + std::to_string(budget.limit) +
-           " (--max-memory)";
+  if (!error.empty() && budget.exceeded) return refusal_cause(input, budget);
   return error;
 }
 
@@ -113,17 +132,22 @@ std::string guarded_with_timeout(const std::string& input, uint64_t max_memory, 
     state->done = true;
     state->done_cv.notify_all();
   });
+  // Waits in short rounds: a thread parked by a refusal (fault.h) never says it is done.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
   std::unique_lock<std::mutex> lock(state->mutex);
-  if (timeout > 0) {
-    if (!state->done_cv.wait_for(lock, std::chrono::duration<double>(timeout), [&] { return state->done; })) {
+  while (!state->done_cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return state->done; })) {
+    if (state->budget.parked) {
+      lock.unlock();
+      thread.detach();
+      return refusal_cause(input, state->budget);
+    }
+    if (timeout > 0 && std::chrono::steady_clock::now() >= deadline) {
       state->budget.cancelled = true;
       lock.unlock();
       thread.detach();
       timed_out = true;
       return input + ": timed out after " + seconds_text(timeout) + " s (--timeout)";
     }
-  } else {
-    state->done_cv.wait(lock, [&] { return state->done; });
   }
   lock.unlock();
   thread.join();

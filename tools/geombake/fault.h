@@ -12,9 +12,12 @@
 // unwinds and gives its memory back instead of running on.
 // Memory that libraries take with malloc() directly (libzip) is not counted.
 // No allocation is refused while an exception unwinds the stack (destructors
-// allocate too); one that a destructor makes on the normal path, over the
-// limit, would still end the process (std::terminate): libraries whose
-// destructors allocate (nlohmann::json's flattening one) are the known risk.
+// allocate too). A refusal in a function that may not throw (a destructor on
+// the normal path: nlohmann::json's flattening one allocates) would end the
+// process in std::terminate; on a thread whose budget refused, the terminate
+// handler parks that thread for good instead (Budget::parked) and its owner
+// reports the input as the refusal says and goes on. A parked thread keeps
+// its memory until the process ends.
 #pragma once
 #include <atomic>
 #include <cstdint>
@@ -30,7 +33,12 @@ struct Budget {
   std::atomic<int64_t> peak{0};        // the most `used` reached
   std::atomic<bool> cancelled{false};  // set by a watchdog: the next allocation throws
   std::atomic<bool> exceeded{false};   // an allocation was refused for the limit
+  std::atomic<bool> parked{false};     // its thread is blocked for good (a refusal reached a noexcept frame)
 };
+
+// The one-line cause of a budget's refusal: "FILE: needs more memory than
+// allowed, ... (--max-memory)", "FILE: abandoned (--timeout)" or "FILE: out of memory".
+std::string refusal_cause(const std::string& input, const Budget& budget);
 
 // Turns the accounting on for the rest of the process (off: operator new costs
 // nothing more than malloc). Call before any budget is used.
@@ -58,7 +66,8 @@ std::string guarded(const std::string& input, Budget& budget, const std::functio
 // Runs `work` (as guarded() does) on a thread of its own and waits for it at
 // most `timeout` seconds (0: no limit). On a timeout the work's budget is
 // cancelled, its thread is left to unwind on its own, `timed_out` is set and
-// the cause is "FILE: timed out after S s (--timeout)". The caller must then
+// the cause is "FILE: timed out after S s (--timeout)". A parked thread is
+// left too, with refusal_cause() as the cause. After a timeout the caller must
 // end the process with _Exit rather than return from main (the thread may
 // still be running). `work` must own what it uses (capture by value).
 std::string guarded_with_timeout(const std::string& input, uint64_t max_memory, double timeout,
