@@ -175,7 +175,10 @@ TEST(GlViewer, HudFiguresAreTheCliAndTheReference) {
          rest = m.suffix())
       if (m[1] != "total") cli_passes.push_back(m[1]);
   }
-  for (size_t i = 4; i < lines.size(); ++i)
+  // The last line: the shadow passes' pipeline statistics, as --frames prints them.
+  ASSERT_EQ(lines.back().rfind("shadow passes: ", 0), 0u) << hud.out;
+  EXPECT_NE(frames.lines("pcf frame 1:").at(0).find("; " + lines.back()), std::string::npos) << frames.out;
+  for (size_t i = 4; i + 1 < lines.size(); ++i)
     hud_passes.push_back(lines[i].substr(2, lines[i].rfind(' ', lines[i].size() - 4) - 2));
   EXPECT_EQ(hud_passes, cli_passes) << hud.out << frames.out;
   // The HUD is drawn into the top left of the image, and nowhere else.

@@ -16,18 +16,23 @@ std::string format(const char* f, double a, double b = 0) {
   return buffer;
 }
 
-bool is_shadow_pass(const std::string& pass) {
-  return pass != "depth + ambient" && pass != "lit shading" && pass != "shading" && pass != "inspection" &&
-         pass.rfind("silhouette buffers", 0) != 0;
-}
-
 }  // namespace
 
 double shadow_ms(const std::vector<render::PassTime>& times) {
   double ms = 0;
   for (const render::PassTime& t : times)
-    if (is_shadow_pass(t.pass)) ms += t.ms;
+    if (render::is_shadow_pass(t.pass)) ms += t.ms;
   return ms;
+}
+
+std::string counter_text(const std::vector<render::PassTime>& times) {
+  const render::PassCounters c = render::shadow_counters(times);
+  if (!c.valid) return "";
+  char buffer[200];
+  std::snprintf(buffer, sizeof buffer, "%llu primitives, %llu vs, %llu gs, %llu fs invocations",
+                (unsigned long long)c.primitives, (unsigned long long)c.vs_invocations,
+                (unsigned long long)c.gs_invocations, (unsigned long long)c.fs_invocations);
+  return buffer;
 }
 
 double total_ms(const std::vector<render::PassTime>& times) {
@@ -68,6 +73,7 @@ std::vector<std::string> hud_lines(const Figures& f, bool passes) {
     for (const auto& [name, v] : merged)
       lines.push_back("  " + name + (v.second > 1 ? " x" + std::to_string(v.second) : "") +
                       format(" %.2f ms", v.first));
+    if (const std::string c = counter_text(f.times); !c.empty()) lines.push_back("shadow passes: " + c);
   }
   return lines;
 }

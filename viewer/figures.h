@@ -35,11 +35,14 @@ struct Figures {
 // inspection and the one-off bake (geombench's time_ms).
 double shadow_ms(const std::vector<render::PassTime>& times);
 double total_ms(const std::vector<render::PassTime>& times);
+// The shadow passes' pipeline statistics (render::shadow_counters): "1200
+// primitives, 3600 vs, 0 gs, 51000 fs invocations"; "" where the context has none.
+std::string counter_text(const std::vector<render::PassTime>& times);
 
 // The HUD's lines: "pcf 1024 | 6 faces" (technique, map size, the projection drawn); "shadow 1.23 ms, frame 2.50 ms
 // (GPU)", or
 // "(wall)" for wall time around glFinish on a software rasterizer; the
-// error_lines; then each pass's time.
+// error_lines; then each pass's time and "shadow passes: " counter_text.
 std::vector<std::string> hud_lines(const Figures& f, bool passes = true);
 // "error 0.520% visible, 3.10% boundary" and "per class: 0.400% cast, 0.100% self".
 std::vector<std::string> error_lines(const ErrorFigures& e);

@@ -59,7 +59,9 @@ int run_headless(Options& o, Session& s) {
       if (o.frames > 1) {
         std::printf("%s frame %d:", render::technique_name(t), frame);
         for (auto& pt : times) std::printf(" %s %.3f ms", pt.pass.c_str(), pt.ms);
-        std::printf(" total %.3f ms; drew %s\n", total_ms(times), render::drawn_projection(*s.state).c_str());
+        const std::string counters = counter_text(times);
+        std::printf(" total %.3f ms; drew %s%s\n", total_ms(times), render::drawn_projection(*s.state).c_str(),
+                    counters.empty() ? "" : ("; shadow passes: " + counters).c_str());
       }
       f.times = times;
       f.projection = render::drawn_projection(*s.state);

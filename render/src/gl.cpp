@@ -14,6 +14,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <sstream>
 
+#include "pass_counters.h"
 #include "render/platform.h"
 
 namespace render {
@@ -54,11 +55,17 @@ std::string gl_error_text() {
 void label(GLenum kind, GLuint id, const std::string& name) { glObjectLabel(kind, id, -1, name.c_str()); }
 
 void PassTimer::begin(const std::string& name) {
-  current = name;
+  if (counters < 0) counters = pass_counters_available() ? 1 : 0;
+  pending.emplace_back();
+  Pending& p = pending.back();
+  p.time.pass = name;
+  if (counters) {
+    p.stats = std::make_shared<CounterQueries>();
+    p.stats->begin();
+  }
   if (gpu) {
-    queries.emplace_back(name, Query());
-    glCreateQueries(GL_TIME_ELAPSED, 1, &queries.back().second.id);
-    glBeginQuery(GL_TIME_ELAPSED, queries.back().second);
+    glCreateQueries(GL_TIME_ELAPSED, 1, &p.elapsed.id);
+    glBeginQuery(GL_TIME_ELAPSED, p.elapsed);
   } else {
     glFinish();
     start = std::chrono::steady_clock::now();
@@ -66,22 +73,27 @@ void PassTimer::begin(const std::string& name) {
 }
 
 void PassTimer::end() {
+  Pending& p = pending.back();
   if (gpu) {
     glEndQuery(GL_TIME_ELAPSED);
   } else {
     glFinish();
-    out->push_back(
-        {current, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+    p.time.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
+  if (p.stats) p.stats->end();
 }
 
 void PassTimer::collect() {
-  for (auto& q : queries) {
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(q.second, GL_QUERY_RESULT, &ns);
-    out->push_back({q.first, ns * 1e-6});
+  for (Pending& p : pending) {
+    if (gpu) {
+      GLuint64 ns = 0;
+      glGetQueryObjectui64v(p.elapsed, GL_QUERY_RESULT, &ns);
+      p.time.ms = ns * 1e-6;
+    }
+    if (p.stats) p.time.counters = p.stats->read();
+    out->push_back(p.time);
   }
-  queries.clear();
+  pending.clear();
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -57,16 +58,23 @@ struct Target {
   int width = 0, height = 0;
 };
 
-// The time of each pass: GPU timer queries, or wall time around glFinish.
+// The time of each pass: GPU timer queries, or wall time around glFinish; and
+// its pipeline statistics where the context has them (pass_counters.h).
+struct CounterQueries;
 struct PassTimer {
   bool gpu = false;
-  std::vector<std::pair<std::string, Query>> queries;
+  int counters = -1;  // pipeline statistics: -1 not yet asked, 0 none, 1 queried per pass
+  struct Pending {
+    PassTime time;
+    Query elapsed;
+    std::shared_ptr<CounterQueries> stats;
+  };
+  std::vector<Pending> pending;
   std::vector<PassTime>* out = nullptr;
   std::chrono::steady_clock::time_point start;
-  std::string current;
   void begin(const std::string& name);
   void end();
-  void collect();
+  void collect();  // appends every pass, in order, to *out
 };
 
 // Programs made of shaders/ files (stage from the extension: .vert .geom

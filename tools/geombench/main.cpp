@@ -3,6 +3,7 @@
 //
 //   geombench [--quick] [-o DIR] [--scenes a,b] [--techniques a,b] [--sizes 256,512]
 //             [--size WxH] [--frames N] [--no-bake] [--no-render] [--light-radius R]
+//             [--time-only]
 //
 // For each scene (scenes.h), technique (render::available_techniques(), the
 // viewer's names) and shadow-map size (256 ... 4096; one row with size 0 for
@@ -38,6 +39,12 @@
 // DIR/bake.csv, DIR/plot.svg (error against time, one panel per scene, a line
 // per technique, a point per map size) and DIR/summary.md (the best technique
 // at each time budget, the goals of the issue met or missed).
+// --time-only: the times and counters alone, no Embree reference (errors -1),
+// no budget summary or goals: the run for a GPU machine (scripts/gpu-timing.sh).
+//  - primitives, vs_invocations, gs_invocations, fs_invocations: the shadow
+//    passes' pipeline statistics of one frame (render::shadow_counters; -1
+//    where the context has no ARB_pipeline_statistics_query), the counts
+//    Kenzel 2013, Sect. 5.1 (figs. 5.3, 5.4) sets beside the times.
 // --quick (CI): 160x120 images, sizes 256 and 1024, scenes default, pipes,
 // grazing, one frame, bake throughput on 10k and 50k triangles.
 // cube needs a point or spot light: it has no rows for directional-light scenes.
@@ -73,11 +80,6 @@ namespace {
 
 using geombench::fmt;
 using geombench::Row;
-
-bool is_shadow_pass(const std::string& pass) {
-  return pass != "depth + ambient" && pass != "lit shading" && pass != "shading" && pass != "inspection" &&
-         pass.rfind("silhouette buffers", 0) != 0;
-}
 
 void score(const geom::PngImage& mask, const geom::ShadowReference& ref, Row& r) {
   const geom::ShadowError e = geom::shadow_error(mask.pixels, ref);
@@ -192,10 +194,8 @@ void soft_goals(const std::vector<Row>& rows, std::vector<std::string>& out) {
                   std::to_string(okt) + " of " + std::to_string(nt) + ", worst " + fmt("%.2f", worst_t) + "x");
 }
 
-std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std::string>& hard,
-                               const std::vector<geombench::BakeRow>& bake) {
-  (void)hard;
-  std::vector<std::string> out;
+// The shadow volumes within rasterization tolerance of zero error.
+void volume_goal(const std::vector<Row>& rows, std::vector<std::string>& out) {
   auto verdict = [](bool ok) { return std::string(ok ? "MET" : "MISSED"); };
   {  // shadow volumes within rasterization tolerance of zero
     double worst = 0;
@@ -212,6 +212,11 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
                     ": shadow volumes near zero error (goal <= 0.001 of visible pixels): worst " + fmt("%.5f", worst) +
                     " (" + where + ")");
   }
+}
+
+// The pixel-exact goals on error_cast (Kenzel 2013, Sect. 5.2).
+void cast_goals(const std::vector<Row>& rows, std::vector<std::string>& out) {
+  auto verdict = [](bool ok) { return std::string(ok ? "MET" : "MISSED"); };
   // Kenzel 2013, Sect. 5.2 (pixel-exact hard shadows), judged on error_cast, on the pipes, default, jenga and scan
   // scenes, N = 512..2048: edsm@N <= ssm@N / 10 and <= ssm@4N, esm@N <= ssm@N / 3.
   const std::set<std::string> goal_scenes = {"pipes", "default", "jenga", "scan"};
@@ -242,6 +247,11 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
                     " (pipes, default, jenga, scan; N = 512..2048): " + std::to_string(ok) + " of " +
                     std::to_string(n) + (misses.empty() ? "" : "; missed:" + misses));
   }
+}
+
+// The silhouette maps never worse than ssm in error_visible, and their cost against ssm's.
+void map_goals(const std::vector<Row>& rows, std::vector<std::string>& out) {
+  auto verdict = [](bool ok) { return std::string(ok ? "MET" : "MISSED"); };
   for (const char* t : {"esm", "esm-exact", "edsm"}) {  // never worse than ssm in error_visible
     int n = 0, ok = 0;
     std::string misses;
@@ -276,6 +286,12 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
                     (kind == "wall" ? ", software rasterizer: the goal is about GPU figures" : "") + "): mean " +
                     fmt("%.2f", sum / n) + "x, worst " + fmt("%.2f", worst) + "x");
   }
+}
+
+// The warped maps against uniform on wide-depth, and the bake against meshoptimizer.
+void warp_bake_goals(const std::vector<Row>& rows, const std::vector<geombench::BakeRow>& bake,
+                     std::vector<std::string>& out) {
+  auto verdict = [](bool ok) { return std::string(ok ? "MET" : "MISSED"); };
   for (const char* t : {"psm", "lispsm"}) {  // better than uniform on the wide depth range
     int n = 0, ok = 0;
     for (const Row& r : rows) {
@@ -295,6 +311,16 @@ std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std:
                   " triangles: " + fmt("%.2f", q) + "x its throughput (the bake also welds, classifies and emits ESM " +
                   "quads and the shadow volume)");
   }
+}
+
+std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std::string>& hard,
+                               const std::vector<geombench::BakeRow>& bake) {
+  (void)hard;
+  std::vector<std::string> out;
+  volume_goal(rows, out);
+  cast_goals(rows, out);
+  map_goals(rows, out);
+  warp_bake_goals(rows, bake, out);
   soft_goals(rows, out);
   std::vector<geombench::SizePoint> points;  // error falls as the map grows (size_law.h)
   for (const Row& r : rows) points.push_back({r.scene, r.technique, r.size, r.error_visible});
@@ -306,13 +332,15 @@ int usage(const std::string& error) {
   if (!error.empty()) cli::error("%s", error.c_str());
   std::fprintf(error.empty() ? stdout : stderr,
                "usage: geombench [--quick] [-o DIR] [--scenes a,b] [--techniques a,b] [--sizes 256,1024]\n"
-               "                 [--size WxH] [--frames N] [--no-bake] [--no-render] [--light-radius R]\n");
+               "                 [--size WxH] [--frames N] [--no-bake] [--no-render] [--light-radius R]\n"
+               "                 [--time-only]\n");
   return error.empty() ? cli::kExitOk : cli::kExitUsage;
 }
 
 // The whole run, from the command line, validated before anything is measured.
 struct Plan {
   bool quick = false, bake = true, render = true;
+  bool time_only = false;  // --time-only: no reference, no errors (-1), no budget summary or goals
   int width = 640, height = 480, frames = 3;
   double light_radius = -1;  // -1: the default of each scene
   std::vector<int> sizes;
@@ -325,6 +353,7 @@ struct Plan {
 // technique, an empty list, a number out of range or not whole is an error.
 bool parse_plan(const cli::Args& args, Plan& plan, std::string& error) {
   plan.quick = args.has("--quick"), plan.bake = !args.has("--no-bake"), plan.render = !args.has("--no-render");
+  plan.time_only = args.has("--time-only");
   if (plan.quick) plan.width = 160, plan.height = 120, plan.frames = 1;
   if (!cli::size_option(args, "--size", 8, 4096, plan.width, plan.height, error) ||
       !cli::int_option(args, "--frames", 1, 1000, plan.frames, error) ||
@@ -469,28 +498,39 @@ bool measure_cell(const Plan& plan, const Loaded& l, render::State& state, const
   // Fewer frames where one is slow (4096 maps, the heavy scene), never fewer sizes.
   const int n = (size >= 4096 || b.scene.triangle_count() > 100000) ? std::min(plan.frames, 1) : plan.frames;
   std::vector<double> ms;
+  render::PassCounters counters;  // the last frame's: the same every frame
   for (int f = warm ? 0 : -1; f < n; ++f) {
     times.clear();
     if (!render::render(state, view, b.light, fs, mask, times, error)) return false;
     if (f < 0) continue;
     double sum = 0;
     for (const render::PassTime& p : times)
-      if (is_shadow_pass(p.pass)) sum += p.ms;
+      if (render::is_shadow_pass(p.pass)) sum += p.ms;
     ms.push_back(sum);
+    counters = render::shadow_counters(times);
   }
   std::sort(ms.begin(), ms.end());
   Row r;
   r.scene = b.name, r.technique = render::technique_name(t), r.size = size, r.time_kind = m.kind;
   r.time_ms = ms[ms.size() / 2], r.frames = n, r.triangles = b.scene.triangle_count();
   r.projection = render::drawn_projection(state);
-  if (area.ok) r.error_fraction = geom::mean_fraction_error(mask.pixels, area);
-  if (soft)  // the hard state of a fraction: lit from 0.5 on
-    for (uint8_t& v : mask.pixels) v = v >= 128 ? 255 : 0;
-  score(mask, ref, r);
+  if (counters.valid) {
+    r.primitives = (long long)counters.primitives, r.vs_invocations = (long long)counters.vs_invocations;
+    r.gs_invocations = (long long)counters.gs_invocations, r.fs_invocations = (long long)counters.fs_invocations;
+  }
+  if (!plan.time_only) {
+    if (area.ok) r.error_fraction = geom::mean_fraction_error(mask.pixels, area);
+    if (soft)  // the hard state of a fraction: lit from 0.5 on
+      for (uint8_t& v : mask.pixels) v = v >= 128 ? 255 : 0;
+    score(mask, ref, r);
+  } else {
+    r.error_visible = r.error_boundary = r.error_cast = r.error_self = -1;
+  }
   m.rows.push_back(r);
-  std::printf("  %-10s %6s %10.3f %10.5f %10.5f %10.5f %10.5f %10.5f  %s\n", r.technique.c_str(),
-              size ? std::to_string(size).c_str() : "-", r.time_ms, r.error_visible, r.error_boundary, r.error_cast,
-              r.error_self, r.error_fraction, r.projection.c_str());
+  std::printf("  %-10s %6s %10.3f %10.5f %10.5f %10.5f %10.5f %10.5f %11lld %11lld %6lld %11lld  %s\n",
+              r.technique.c_str(), size ? std::to_string(size).c_str() : "-", r.time_ms, r.error_visible,
+              r.error_boundary, r.error_cast, r.error_self, r.error_fraction, r.primitives, r.vs_invocations,
+              r.gs_invocations, r.fs_invocations, r.projection.c_str());
   std::fflush(stdout);
   return true;
 }
@@ -509,15 +549,17 @@ bool measure_scene(const Plan& plan, Loaded& l, Measured& m, std::string& error)
   view.width = plan.width, view.height = plan.height;
   if (!cli::check_camera(view, "scene " + name + ": camera", error)) return false;
   const auto positions = geom::positions_of(b.scene.positions.data(), b.scene.vertex_count());
-  const geom::ShadowReference ref =
-      geom::shadow_reference(positions, b.scene.indices.data(), b.scene.indices.size(), view, b.light);
-  if (!ref.ok) return error = "scene " + name + ": reference: " + ref.error, false;
+  geom::ShadowReference ref;  // --time-only: none
+  if (!plan.time_only) {
+    ref = geom::shadow_reference(positions, b.scene.indices.data(), b.scene.indices.size(), view, b.light);
+    if (!ref.ok) return error = "scene " + name + ": reference: " + ref.error, false;
+  }
   float sb[4];  // the area-light reference, where a soft technique runs
   render::scene_bounds(*state, sb);
   const bool directional = b.light.type == geom::LightType::Directional;
   l.radius = float(plan.light_radius >= 0 ? plan.light_radius : directional ? 0.02 : 0.04 * sb[3]);
   geom::AreaReference area;
-  if (std::any_of(plan.techniques.begin(), plan.techniques.end(), render::technique_is_soft)) {
+  if (!plan.time_only && std::any_of(plan.techniques.begin(), plan.techniques.end(), render::technique_is_soft)) {
     area = geom::area_light_reference(positions, b.scene.indices.data(), b.scene.indices.size(), view, b.light,
                                       l.radius, 64);
     if (!area.ok) return error = "scene " + name + ": area reference: " + area.error, false;
@@ -527,8 +569,9 @@ bool measure_scene(const Plan& plan, Loaded& l, Measured& m, std::string& error)
   std::printf("\n%s: %s; %zu triangles; %dx%d; %s\n", name.c_str(), b.description.c_str(), b.scene.triangle_count(),
               plan.width, plan.height, m.kind_text.c_str());
   if (area.ok) std::printf("  light radius %g (soft techniques; err frac: vs the area-light reference)\n", l.radius);
-  std::printf("  %-10s %6s %10s %10s %10s %10s %10s %10s  %s\n", "technique", "map", "time ms", "err vis", "err bnd",
-              "err cast", "err self", "err frac", "projection drawn");
+  std::printf("  %-10s %6s %10s %10s %10s %10s %10s %10s %11s %11s %6s %11s  %s\n", "technique", "map", "time ms",
+              "err vis", "err bnd", "err cast", "err self", "err frac", "primitives", "vs inv", "gs inv", "fs inv",
+              "projection drawn");
   for (render::Technique t : plan.techniques) {
     if (render::technique_needs_point_light(t) && directional) {
       std::printf("  %-10s (needs a point or spot light: not measured)\n", render::technique_name(t));
@@ -564,7 +607,11 @@ std::string results_json(const Plan& plan, const Measured& m, const std::vector<
                        {"frames", r.frames},
                        {"triangles", r.triangles},
                        {"error_fraction", r.error_fraction},
-                       {"projection", r.projection}});
+                       {"projection", r.projection},
+                       {"primitives", r.primitives},
+                       {"vs_invocations", r.vs_invocations},
+                       {"gs_invocations", r.gs_invocations},
+                       {"fs_invocations", r.fs_invocations}});
   nlohmann::json bj = nlohmann::json::array();
   for (size_t i = 0; i < bake.size(); ++i) {
     const geombench::BakeRow& r = bake[i];
@@ -589,9 +636,9 @@ std::string results_json(const Plan& plan, const Measured& m, const std::vector<
 
 // The tables on stdout; with -o, the five files, all or none (cli/output.h).
 bool report(const Plan& plan, const Measured& m, const std::vector<geombench::BakeRow>& bake, std::string& error) {
-  const std::vector<std::string> best = budget_summary(m.rows);
-  const std::vector<std::string> goal_lines = goals(m.rows, m.hard, bake);
-  if (!m.rows.empty()) {
+  const std::vector<std::string> best = plan.time_only ? std::vector<std::string>{} : budget_summary(m.rows);
+  const std::vector<std::string> goal_lines = plan.time_only ? std::vector<std::string>{} : goals(m.rows, m.hard, bake);
+  if (!best.empty()) {
     std::printf("\nBest technique at each time budget (mean time and mean error over the scenes):\n");
     for (const std::string& l : best) std::printf("  %s\n", l.c_str());
   }
@@ -626,7 +673,7 @@ bool report(const Plan& plan, const Measured& m, const std::vector<geombench::Ba
 
 int run(int argc, char** argv) {
   cli::Args args(std::vector<std::string>(argv + 1, argv + argc),
-                 {"--quick", "--no-bake", "--no-render", "-h", "--help"},
+                 {"--quick", "--no-bake", "--no-render", "--time-only", "-h", "--help"},
                  {"-o", "--scenes", "--techniques", "--sizes", "--size", "--frames", "--shaders", "--light-radius"});
   if (!args.error().empty()) return usage(args.error());
   if (args.has("-h") || args.has("--help")) return usage("");

@@ -17,13 +17,16 @@ std::string fmt(const char* f, double v) {
 std::string results_csv(const std::vector<Row>& rows) {
   std::ostringstream csv;
   csv << "scene,technique,shadow_map_size,time_ms,time_kind,error_visible,error_boundary,visible_pixels,"
-         "boundary_pixels,frames,triangles,error_cast,error_self,cast_pixels,self_pixels,error_fraction,projection\n";
+         "boundary_pixels,frames,triangles,error_cast,error_self,cast_pixels,self_pixels,error_fraction,projection,"
+         "primitives,vs_invocations,"
+         "gs_invocations,fs_invocations\n";
   for (const Row& r : rows)
     csv << r.scene << "," << r.technique << "," << r.size << "," << fmt("%.4f", r.time_ms) << "," << r.time_kind << ","
         << fmt("%.6f", r.error_visible) << "," << fmt("%.6f", r.error_boundary) << "," << r.visible << "," << r.boundary
         << "," << r.frames << "," << r.triangles << "," << fmt("%.6f", r.error_cast) << "," << fmt("%.6f", r.error_self)
-        << "," << r.cast << "," << r.self << "," << fmt("%.6f", r.error_fraction) << "," << r.projection
-        << "\n";  // render::drawn_projection: never a comma
+        << "," << r.cast << "," << r.self << "," << fmt("%.6f", r.error_fraction) << ","
+        << r.projection  // render::drawn_projection: never a comma
+        << "," << r.primitives << "," << r.vs_invocations << "," << r.gs_invocations << "," << r.fs_invocations << "\n";
   return csv.str();
 }
 

@@ -18,6 +18,10 @@ struct Row {
   double time_ms = 0, error_visible = 0, error_boundary = 0, error_cast = 0, error_self = 0, error_fraction = -1;
   size_t visible = 0, boundary = 0, cast = 0, self = 0, triangles = 0;
   int frames = 0;
+  // The shadow passes' pipeline statistics of one frame (render::shadow_counters),
+  // -1 where the context has none: primitives submitted, vertex, geometry and
+  // fragment shader invocations.
+  long long primitives = -1, vs_invocations = -1, gs_invocations = -1, fs_invocations = -1;
 };
 
 std::string fmt(const char* format, double v);  // printf of one number

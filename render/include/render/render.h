@@ -108,10 +108,28 @@ bool baked_view(const geom::baked::Reader& reader, BakedView& out, std::string& 
 // light fraction of each visible pixel, 0..255 (128 also where no geometry is).
 enum class Output { Color, Mask, Fraction };
 
+// The pipeline statistics of one pass (ARB_pipeline_statistics_query), the
+// hardware-independent figures Kenzel 2013, Sect. 5.1 (figs. 5.3, 5.4) sets
+// beside each algorithm's time: primitives submitted, vertex, geometry and
+// fragment shader invocations, primitives out of clipping. `valid` false: the
+// context has no such queries (every count 0).
+struct PassCounters {
+  bool valid = false;
+  uint64_t primitives = 0, vs_invocations = 0, gs_invocations = 0, fs_invocations = 0, clipping_primitives = 0;
+  PassCounters& operator+=(const PassCounters& o);
+};
+
 struct PassTime {
   std::string pass;
   double ms = 0;
+  PassCounters counters;  // the pass's own draws
 };
+
+// A technique's shadow passes: every pass but the camera's ("depth + ambient",
+// "lit shading", "shading"), the inspection overlay and the once-only bake.
+bool is_shadow_pass(const std::string& pass);
+// The counters of a frame's shadow passes, summed.
+PassCounters shadow_counters(const std::vector<PassTime>& times);
 
 struct FrameSettings {
   Technique technique = Technique::Ssm;
