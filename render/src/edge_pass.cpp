@@ -81,11 +81,12 @@ void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget targe
   end_edge_pass(f, target);
 }
 
-void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip) {
+void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit) {
+  set(p, "u_planes", planes_unit);
   for (const Caster& c : f.s.casters) {
     set(p, "u_light_view_proj", at(glm::dmat4(light_clip), c.origin));
     set(p, "u_light", local_light(c, glm::dvec4(f.light.position)));
-    glBindTextureUnit(2, c.esm_planes);
+    glBindTextureUnit(GLuint(planes_unit), c.esm_planes);
     glBindVertexArray(c.esm_vao);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, c.esm_count);
   }

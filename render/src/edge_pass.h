@@ -1,5 +1,5 @@
 // edge_pass.h (private to render/): the edge pass the silhouette-map
-// techniques share (esm, edsm, sssm, edsm-soft): after the face's depth map, a
+// techniques share (esm, edsm, edsm-gs, sssm, edsm-soft): after the face's depth map, a
 // second map of the same size (s.edge_map) drawn from the casters' edges with
 // the depth map on texture unit 1 (read without comparison).
 #pragma once
@@ -35,9 +35,10 @@ void draw_adjacency(const State& s);
 // begin_edge_pass, draw_adjacency, end_edge_pass.
 void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target);
 
-// Every caster's ESM silhouette quads (esm_quad.vert with program `p`, its
-// u_light_view_proj / u_light set per caster), between the two.
-void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip);
+// Every caster's ESM silhouette quads (esm_quad.vert or edsm_quad.vert with
+// program `p`, its u_light_view_proj / u_light set per caster, the planes on
+// texture unit `planes_unit`), between the two.
+void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit = 2);
 
 // esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each
 // `texels` wide beyond its edge) with the fragment shader `frag`, MAX blended

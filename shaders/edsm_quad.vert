@@ -1,0 +1,100 @@
+#version 450 core
+// Edge distance shadow map (Kenzel 2013, Sect. 3.2 and 4.2.1), distance-map
+// pass without a geometry shader: the silhouette test per light runs here,
+// over the baked candidate edges (geom/esm_quads.h records: both face planes
+// of each edge, coplanar and concave edges already dropped), and a quad opens
+// only for a silhouette edge; every other record collapses outside the clip
+// volume and draws nothing. The thesis's geometry-shader path over every
+// triangle with adjacency (shaders/edsm_edges.vert + .geom, technique edsm-gs)
+// writes the same edges; the fragment shader, shaders/edsm_edges.frag, is the
+// same for both.
+//
+// Draw: glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, quad_count), one
+// instance per EsmQuad (the layout of shaders/esm_quad.vert). Corner
+// gl_VertexID 0..3: the screen-aligned quad of edsm_edges.geom's emit_edge,
+// u_half_width texels on each side of the segment and beyond each end.
+//
+// Silhouette (Bujnak 2004, Sect. 3.1): the light in front of one plane and
+// behind the other; a bevel or boundary edge has two records, of which exactly
+// one opens. The occluder's side: the quad's back side, along -q (the
+// extrusion vector, normalize(nA + nB), points away from the faces): with the
+// clipped end points a, b (clip x, y, w, w > 0) the NDC line through them is
+// cross(a, b) / (a.w b.w), and a point moved from the edge along -q lands
+// where cross(a, b) . (M q).xyw < 0 puts it on the left of a -> b.
+// Edge line (eq. 3.7) and segment as the geometry shader writes them: the
+// part on the light's side of the near plane (Sect. 3.2.2: clipped, not
+// dropped), c . (x, y, 1) the signed NDC distance, positive on the occluder's side.
+//
+// Uniforms:
+//   mat4 u_light_view_proj  local frame (geom/face_planes.h) -> light clip
+//   vec4 u_light            the light in the local frame: (x, y, z, 1) point, (x, y, z, 0) directional
+//   samplerBuffer u_planes  the records' planes (RGBA32F texture buffer)
+//   float u_map_size, u_half_width   texels per side, quad half width in texels
+layout(location = 0) in vec3 a_p0;
+layout(location = 1) in vec3 a_p1;
+layout(location = 2) in uint a_plane_a;
+layout(location = 3) in uint a_plane_b;
+layout(location = 4) in vec2 a_q;  // snorm16 x2, octahedral unit vector
+
+uniform mat4 u_light_view_proj;
+uniform vec4 u_light;
+uniform samplerBuffer u_planes;
+uniform float u_map_size;
+uniform float u_half_width;
+flat out vec3 f_line;
+flat out vec4 f_segment;
+flat out vec2 f_depth;
+
+const uint kFlip = 0x80000000u;
+
+bool in_front(uint index) {
+  vec4 p = texelFetch(u_planes, int(index & 0x7fffffffu));
+  precise float s = p.x * u_light.x;
+  s = s + p.y * u_light.y;
+  s = s + p.z * u_light.z;
+  s = s + p.w * u_light.w;
+  return (s > 0.0) != ((index & kFlip) != 0u);
+}
+
+vec3 octahedral_decode(vec2 e) {
+  e = max(e, vec2(-1.0));
+  vec3 v = vec3(e.x, e.y, 1.0 - abs(e.x) - abs(e.y));
+  if (v.z < 0.0) {
+    vec2 o = v.xy;
+    v.x = (1.0 - abs(o.y)) * (o.x >= 0.0 ? 1.0 : -1.0);
+    v.y = (1.0 - abs(o.x)) * (o.y >= 0.0 ? 1.0 : -1.0);
+  }
+  return v / sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+}
+
+// edsm_edges.geom's clip_near: the part of a-b with z >= -w.
+bool clip_near(inout vec4 a, inout vec4 b) {
+  float da = a.z + a.w, db = b.z + b.w;
+  if (da < 0.0 && db < 0.0) return false;
+  if (da < 0.0) a = mix(a, b, da / (da - db));
+  else if (db < 0.0) b = mix(b, a, db / (db - da));
+  return a.w > 0.0 && b.w > 0.0;
+}
+
+void main() {
+  const vec4 nothing = vec4(2.0, 2.0, 0.0, 1.0);  // outside the clip volume: the quad draws nothing
+  f_line = vec3(0.0), f_segment = vec4(0.0), f_depth = vec2(0.0);
+  gl_Position = nothing;
+  if (in_front(a_plane_a) == in_front(a_plane_b)) return;
+  vec4 a = u_light_view_proj * vec4(a_p0, 1.0), b = u_light_view_proj * vec4(a_p1, 1.0);
+  if (!clip_near(a, b)) return;
+  vec4 mq = u_light_view_proj * vec4(octahedral_decode(a_q), 0.0);
+  float inside = dot(cross(a.xyw, b.xyw), mq.xyw) < 0.0 ? 1.0 : -1.0;
+  vec2 A = a.xy / a.w, B = b.xy / b.w;
+  vec2 ab = B - A;
+  float len = length(ab);
+  vec2 t = len > 0.0 ? ab / len : vec2(1.0, 0.0);
+  vec2 n = vec2(-t.y, t.x) * inside;  // towards the occluder
+  float h = u_half_width * 2.0 / u_map_size;
+  f_line = vec3(n, -dot(n, A));
+  f_segment = vec4(A, B);
+  f_depth = vec2(a.z / a.w, b.z / b.w);
+  int k = gl_VertexID;
+  vec2 along = (k < 2 ? A - t * h : B + t * h), across = (k & 1) == 0 ? -n * h : n * h;
+  gl_Position = vec4(along + across, 0.0, 1.0);
+}

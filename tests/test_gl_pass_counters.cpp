@@ -1,0 +1,139 @@
+// The pipeline statistics of the shadow passes (render::PassCounters,
+// ARB_pipeline_statistics_query) and the laws of the edge passes that they
+// show: the figures Kenzel 2013, Sect. 5.1 (figs. 5.3, 5.4) sets beside the
+// times, on llvmpipe through EGL.
+//
+//   side view:        sun (directional)
+//                    /
+//        +--+       /     a box floating over a flat ground of k x k quads;
+//        +--+             the ground tessellated 2k x 2k has four times the
+//   ==================    triangles and no more silhouette edges (its inner
+//                         edges are coplanar, its border twice as long)
+#include <map>
+
+#include "gl_fixtures.h"
+
+using namespace gltest;
+using render::Technique;
+
+namespace {
+
+// A flat ground of k x k quads (2 k^2 triangles, y = 0, half size 4) and a box over it.
+geom::Scene ground_and_box(int k) {
+  geom::Scene s;
+  const float h = 4, step = 2 * h / float(k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const float x0 = -h + i * step, z0 = -h + j * step, x1 = x0 + step, z1 = z0 + step;
+      add_quad(s, {x0, 0, z0}, {x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0});
+    }
+  add_box(s, box_at({0.3f, 1.2f, -0.2f}, {0.8f, 0.5f, 0.6f}, 20));
+  return s;
+}
+
+geom::Camera view() { return camera({2.0f, 6.0f, 7.0f}, {0, 0, 0}, 50, 0.1f, 100, 160, 120); }
+
+struct Frame {
+  std::vector<render::PassTime> times;
+  std::string projection;
+};
+
+Frame frame(render::State& state, const geom::Light& light, Technique t, int size = 256) {
+  render::FrameSettings fs;
+  fs.technique = t, fs.output = render::Output::Mask, fs.shadow_map_size = size;
+  geom::PngImage mask;
+  Frame f;
+  std::string error;
+  EXPECT_TRUE(render::render(state, view(), light, fs, mask, f.times, error)) << error;
+  f.projection = render::drawn_projection(state);
+  return f;
+}
+
+// The counters of the passes whose name starts with `prefix`, summed.
+render::PassCounters passes(const Frame& f, const std::string& prefix) {
+  render::PassCounters sum;
+  for (const render::PassTime& t : f.times)
+    if (t.pass.rfind(prefix, 0) == 0) sum += t.counters;
+  return sum;
+}
+
+std::vector<geom::Light> lights() {
+  return {sun({0.4f, 1.0f, 0.3f}), sun({-0.7f, 0.6f, 0.2f}), sun({0.1f, 1.0f, -0.9f}),
+          spot_light({1.0f, 6.0f, 2.0f}, {-0.15f, -1.0f, -0.35f}, 40)};
+}
+
+}  // namespace
+
+// The depth map draws every scene triangle once per face; the counts are there
+// for every technique's shadow passes and nothing else.
+TEST(GlPassCounters, DepthMapPrimitivesAreTheSceneTriangles) {
+  ASSERT_NE(context(), nullptr);
+  const geom::Scene scene = ground_and_box(8);
+  std::string error;
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  for (const geom::Light& light : lights()) {
+    const Frame f = frame(*state, light, Technique::Ssm);
+    ASSERT_EQ(f.projection, "fitted frustum");
+    const render::PassCounters c = render::shadow_counters(f.times);
+    ASSERT_TRUE(c.valid) << "the context has no ARB_pipeline_statistics_query";
+    EXPECT_EQ(c.primitives, scene.triangle_count());
+    EXPECT_EQ(c.gs_invocations, 0u);
+    EXPECT_GT(c.vs_invocations, 0u);
+    EXPECT_GT(c.fs_invocations, 0u);
+    // The shading pass is not a shadow pass: its counts stay out of the sum.
+    render::PassCounters all;
+    for (const render::PassTime& t : f.times) all += t.counters;
+    EXPECT_GT(all.primitives, c.primitives);
+  }
+}
+
+// edsm finds its silhouette edges in the vertex shader: no geometry shader
+// runs; edsm-gs, the thesis's path, runs it over every triangle with
+// adjacency, twice per face (one pass per peeled edge).
+TEST(GlPassCounters, EdsmRunsNoGeometryShader) {
+  ASSERT_NE(context(), nullptr);
+  const geom::Scene scene = ground_and_box(8);
+  std::string error;
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  for (const geom::Light& light : lights()) {
+    for (int size : {128, 512}) {
+      const Frame d = frame(*state, light, Technique::Edsm, size);
+      const render::PassCounters c = render::shadow_counters(d.times);
+      ASSERT_TRUE(c.valid);
+      EXPECT_EQ(c.gs_invocations, 0u) << size;
+      EXPECT_GT(passes(d, "edge distance map").fs_invocations, 0u) << size;
+      const Frame g = frame(*state, light, Technique::EdsmGs, size);
+      EXPECT_EQ(render::shadow_counters(g.times).gs_invocations, 2 * scene.triangle_count()) << size;
+    }
+  }
+}
+
+// Edge passes follow silhouette edges, not triangles: the ground four times
+// finer quadruples the depth map's primitives (ssm) and edsm-gs's edge
+// passes, while edsm's edge passes grow at most as the ground's border does
+// (twice), its inner edges being coplanar.
+TEST(GlPassCounters, EdgePassPrimitivesFollowSilhouetteEdgesNotTriangles) {
+  ASSERT_NE(context(), nullptr);
+  const geom::Scene coarse = ground_and_box(16), fine = ground_and_box(32);
+  ASSERT_EQ(fine.triangle_count() - 12, 4 * (coarse.triangle_count() - 12));
+  std::string error;
+  auto a = render::create_state(coarse, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(a) << error;
+  auto b = render::create_state(fine, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(b) << error;
+  for (const geom::Light& light : lights()) {
+    auto ratio = [&](Technique t, const char* prefix) {
+      const double pa = double(passes(frame(*a, light, t), prefix).primitives);
+      const double pb = double(passes(frame(*b, light, t), prefix).primitives);
+      EXPECT_GT(pa, 0) << render::technique_name(t);
+      return pb / std::max(pa, 1.0);
+    };
+    const double ssm = ratio(Technique::Ssm, "depth map");
+    EXPECT_GT(ssm, 3.8);
+    EXPECT_LT(ssm, 4.01);
+    EXPECT_GT(ratio(Technique::EdsmGs, "edge distance map"), 3.8);  // the geometry shader's input: every triangle
+    EXPECT_LE(ratio(Technique::Edsm, "edge distance map"), 2.0);
+  }
+}
