@@ -9,10 +9,13 @@
 // writes the same edges; the fragment shader, shaders/edsm_edges.frag, is the
 // same for both.
 //
-// Draw: glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, quad_count), one
-// instance per EsmQuad (the layout of shaders/esm_quad.vert). Corner
-// gl_VertexID 0..3: the screen-aligned quad of edsm_edges.geom's emit_edge,
-// u_half_width texels on each side of the segment and beyond each end.
+// Draw: glDrawArrays(GL_TRIANGLES, 0, 6 * quad_count), no instancing (a
+// software rasterizer such as llvmpipe runs its vertex pipeline once per
+// instance): vertex gl_VertexID / 6 of the records, read from the shader
+// storage buffer at binding 0 as they lie (geom/esm_quads.h: 9 uints, p0,
+// p1, plane_a, plane_b, q as two snorm16), the two triangles (0 1 2) (2 1 3)
+// of the strip of corners 0..3: the screen-aligned quad of edsm_edges.geom's
+// emit_edge, u_half_width texels on each side of the segment and beyond each end.
 //
 // Silhouette (Bujnak 2004, Sect. 3.1): the light in front of one plane and
 // behind the other; a bevel or boundary edge has two records, of which exactly
@@ -30,11 +33,7 @@
 //   vec4 u_light            the light in the local frame: (x, y, z, 1) point, (x, y, z, 0) directional
 //   samplerBuffer u_planes  the records' planes (RGBA32F texture buffer)
 //   float u_map_size, u_half_width   texels per side, quad half width in texels
-layout(location = 0) in vec3 a_p0;
-layout(location = 1) in vec3 a_p1;
-layout(location = 2) in uint a_plane_a;
-layout(location = 3) in uint a_plane_b;
-layout(location = 4) in vec2 a_q;  // snorm16 x2, octahedral unit vector
+layout(std430, binding = 0) readonly buffer Records { uint records[]; };
 
 uniform mat4 u_light_view_proj;
 uniform vec4 u_light;
@@ -80,10 +79,14 @@ void main() {
   const vec4 nothing = vec4(2.0, 2.0, 0.0, 1.0);  // outside the clip volume: the quad draws nothing
   f_line = vec3(0.0), f_segment = vec4(0.0), f_depth = vec2(0.0);
   gl_Position = nothing;
-  if (in_front(a_plane_a) == in_front(a_plane_b)) return;
-  vec4 a = u_light_view_proj * vec4(a_p0, 1.0), b = u_light_view_proj * vec4(a_p1, 1.0);
+  const int kCorner[6] = int[](0, 1, 2, 2, 1, 3);
+  uint r = 9u * (uint(gl_VertexID) / 6u);
+  if (in_front(records[r + 6u]) == in_front(records[r + 7u])) return;
+  vec3 p0 = uintBitsToFloat(uvec3(records[r], records[r + 1u], records[r + 2u]));
+  vec3 p1 = uintBitsToFloat(uvec3(records[r + 3u], records[r + 4u], records[r + 5u]));
+  vec4 a = u_light_view_proj * vec4(p0, 1.0), b = u_light_view_proj * vec4(p1, 1.0);
   if (!clip_near(a, b)) return;
-  vec4 mq = u_light_view_proj * vec4(octahedral_decode(a_q), 0.0);
+  vec4 mq = u_light_view_proj * vec4(octahedral_decode(unpackSnorm2x16(records[r + 8u])), 0.0);
   float inside = dot(cross(a.xyw, b.xyw), mq.xyw) < 0.0 ? 1.0 : -1.0;
   vec2 A = a.xy / a.w, B = b.xy / b.w;
   vec2 ab = B - A;
@@ -94,7 +97,7 @@ void main() {
   f_line = vec3(n, -dot(n, A));
   f_segment = vec4(A, B);
   f_depth = vec2(a.z / a.w, b.z / b.w);
-  int k = gl_VertexID;
+  int k = kCorner[gl_VertexID % 6];
   vec2 along = (k < 2 ? A - t * h : B + t * h), across = (k & 1) == 0 ? -n * h : n * h;
   gl_Position = vec4(along + across, 0.0, 1.0);
 }

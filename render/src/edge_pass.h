@@ -35,10 +35,16 @@ void draw_adjacency(const State& s);
 // begin_edge_pass, draw_adjacency, end_edge_pass.
 void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget target);
 
-// Every caster's ESM silhouette quads (esm_quad.vert or edsm_quad.vert with
-// program `p`, its u_light_view_proj / u_light set per caster, the planes on
-// texture unit `planes_unit`), between the two.
+// Every caster's ESM silhouette quads (esm_quad.vert with program `p`, its
+// u_light_view_proj / u_light set per caster, the planes on texture unit
+// `planes_unit`), between the two.
 void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit = 2);
+
+// Every caster's ESM records as edsm's edge quads (edsm_quad.vert with program
+// `p`: the records as a shader storage buffer at binding 0, 6 vertices each,
+// not instanced; u_light_view_proj / u_light set per caster, the planes on
+// texture unit `planes_unit`), between the two.
+void draw_edge_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit);
 
 // esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each
 // `texels` wide beyond its edge) with the fragment shader `frag`, MAX blended

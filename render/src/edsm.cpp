@@ -40,7 +40,7 @@ bool edsm_face(Frame& f, const glm::mat4& light_clip, bool gs) {
   auto pass = [&](const char* label, EdgeTarget target) {
     if (gs) return adjacency_edge_pass(f, p, label, target);
     begin_edge_pass(f, p, label, target);
-    draw_esm_quads(f, p, light_clip, kPlanesUnit);
+    draw_edge_quads(f, p, light_clip, kPlanesUnit);
     end_edge_pass(f, target);
   };
   pass("edge distance map", EdgeTarget::EdgePair);
