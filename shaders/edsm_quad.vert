@@ -9,7 +9,10 @@
 // writes the same edges; the fragment shader, shaders/edsm_edges.frag, is the
 // same for both.
 //
-// Draw: glDrawArrays(GL_TRIANGLES, 0, 6 * quad_count), no instancing (a
+// Draw: the silhouette edges found by shaders/edsm_silhouettes.comp
+// (u_compact 1: glDrawArraysIndirect, its list at binding 2 from u_list_first), or
+// every record with the test here (u_compact 0: glDrawArrays(GL_TRIANGLES, 0,
+// 6 * quad_count)); no instancing either way (a
 // software rasterizer such as llvmpipe runs its vertex pipeline once per
 // instance): vertex gl_VertexID / 6 of the records, read from the shader
 // storage buffer at binding 0 as they lie (geom/esm_quads.h: 9 uints, p0,
@@ -34,6 +37,9 @@
 //   samplerBuffer u_planes  the records' planes (RGBA32F texture buffer)
 //   float u_map_size, u_half_width   texels per side, quad half width in texels
 layout(std430, binding = 0) readonly buffer Records { uint records[]; };
+layout(std430, binding = 2) readonly buffer Silhouettes { uint silhouettes[]; };
+uniform int u_compact;  // 1: vertex v draws record silhouettes[u_list_first + v / 6], a silhouette already
+uniform uint u_list_first;
 
 uniform mat4 u_light_view_proj;
 uniform vec4 u_light;
@@ -80,8 +86,8 @@ void main() {
   f_line = vec3(0.0), f_segment = vec4(0.0), f_depth = vec2(0.0);
   gl_Position = nothing;
   const int kCorner[6] = int[](0, 1, 2, 2, 1, 3);
-  uint r = 9u * (uint(gl_VertexID) / 6u);
-  if (in_front(records[r + 6u]) == in_front(records[r + 7u])) return;
+  uint r = 9u * (u_compact == 1 ? silhouettes[u_list_first + uint(gl_VertexID) / 6u] : uint(gl_VertexID) / 6u);
+  if (u_compact == 0 && in_front(records[r + 6u]) == in_front(records[r + 7u])) return;
   vec3 p0 = uintBitsToFloat(uvec3(records[r], records[r + 1u], records[r + 2u]));
   vec3 p1 = uintBitsToFloat(uvec3(records[r + 3u], records[r + 4u], records[r + 5u]));
   vec4 a = u_light_view_proj * vec4(p0, 1.0), b = u_light_view_proj * vec4(p1, 1.0);

@@ -92,19 +92,6 @@ void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_
   }
 }
 
-void draw_edge_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit) {
-  set(p, "u_planes", planes_unit);
-  for (const Caster& c : f.s.casters) {
-    set(p, "u_light_view_proj", at(glm::dmat4(light_clip), c.origin));
-    set(p, "u_light", local_light(c, glm::dvec4(f.light.position)));
-    glBindTextureUnit(GLuint(planes_unit), c.esm_planes);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, c.esm_records);
-    glBindVertexArray(c.esm_vao);  // no attribute read: the records come from the storage buffer
-    glDrawArrays(GL_TRIANGLES, 0, 6 * c.esm_count);
-  }
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-}
-
 bool esm_quad_pass(Frame& f, const glm::mat4& light_clip, float slope, float texels, const std::string& frag) {
   GLuint p = edge_program(f, light_clip, slope, GL_RGBA32F, {"esm_quad.vert", frag});
   if (!p) return false;

@@ -40,11 +40,15 @@ void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget targe
 // `planes_unit`), between the two.
 void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit = 2);
 
-// Every caster's ESM records as edsm's edge quads (edsm_quad.vert with program
-// `p`: the records as a shader storage buffer at binding 0, 6 vertices each,
-// not instanced; u_light_view_proj / u_light set per caster, the planes on
-// texture unit `planes_unit`), between the two.
-void draw_edge_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit);
+// silhouette_edges.cpp: edsm's silhouette edges of the frame's light, once
+// per frame before its faces (shaders/edsm_silhouettes.comp: per caster a list
+// of the silhouette records and an indirect draw; timed as "silhouette
+// edges"); false with f.error when the shader fails.
+bool find_silhouettes(Frame& f);
+// Every caster's silhouette edges as edsm's edge quads (edsm_quad.vert with
+// program `p`: 6 vertices per silhouette edge; u_light_view_proj, u_light,
+// u_first, u_compact set per caster), between begin_edge_pass and end_edge_pass.
+void draw_silhouette_quads(Frame& f, GLuint p, const glm::mat4& light_clip);
 
 // esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each
 // `texels` wide beyond its edge) with the fragment shader `frag`, MAX blended

@@ -5,9 +5,10 @@
 // Sect. 5.2's closely spaced edges and receivers' outlines). The lookup is
 // shaders/lookup_edsm.frag. Two ways to find the silhouette edges, the same
 // edges written:
-//  - edsm: the vertex shader tests each baked candidate edge (geom/esm_quads.h
-//    records, both face planes; shaders/edsm_quad.vert), so an edge pass
-//    costs a vertex per corner of a candidate edge, no geometry shader;
+//  - edsm: a compute pass tests each baked candidate edge once per frame
+//    (geom/esm_quads.h records, both face planes; silhouette_edges.cpp) and
+//    every edge pass draws the silhouette edges alone (shaders/edsm_quad.vert),
+//    no geometry shader;
 //  - edsm-gs, the thesis's: a geometry shader over every caster triangle with
 //    adjacency (geom/adjacency.h; shaders/edsm_edges.vert, .geom), run twice
 //    per face (once per peeled edge).
@@ -16,9 +17,6 @@
 namespace render {
 
 namespace {
-
-// Texture unit of the records' planes (units 1 and 2 hold the depth map and the first edges).
-constexpr int kPlanesUnit = 3;
 
 // One face: the depth map, then the two-edge map beside it, the edges drawn
 // from the baked records (`gs` false) or by the geometry shader.
@@ -40,7 +38,7 @@ bool edsm_face(Frame& f, const glm::mat4& light_clip, bool gs) {
   auto pass = [&](const char* label, EdgeTarget target) {
     if (gs) return adjacency_edge_pass(f, p, label, target);
     begin_edge_pass(f, p, label, target);
-    draw_edge_quads(f, p, light_clip, kPlanesUnit);
+    draw_silhouette_quads(f, p, light_clip);
     end_edge_pass(f, target);
   };
   pass("edge distance map", EdgeTarget::EdgePair);
@@ -51,7 +49,7 @@ bool edsm_face(Frame& f, const glm::mat4& light_clip, bool gs) {
   set(p, "u_peel", 1);
   pass("edge distance map, second edge", EdgeTarget::EdgeSecond);
   glBindTextureUnit(2, 0);
-  glBindTextureUnit(kPlanesUnit, 0);
+  glBindTextureUnit(3, 0);  // the records' planes (silhouette_edges.cpp)
   return true;
 }
 
@@ -61,6 +59,7 @@ bool edsm_gs_face(Frame& f, const glm::mat4& light_clip) { return edsm_face(f, l
 }  // namespace
 
 bool edsm_passes(Frame& f) {
+  if (f.t == Technique::Edsm && !find_silhouettes(f)) return false;
   if (!silhouette_faces(f, f.t == Technique::EdsmGs ? edsm_gs_face : edsm_vs_face, GL_RGBA32UI)) return false;
   f.lookup = "lookup_edsm.frag";
   return true;

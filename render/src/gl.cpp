@@ -152,7 +152,10 @@ GLuint program(Programs& programs, const std::vector<std::string>& files, std::s
       break;
     }
     const std::string ext = f.substr(f.rfind('.') + 1);
-    GLenum stage = ext == "vert" ? GL_VERTEX_SHADER : ext == "geom" ? GL_GEOMETRY_SHADER : GL_FRAGMENT_SHADER;
+    GLenum stage = ext == "vert"   ? GL_VERTEX_SHADER
+                   : ext == "geom" ? GL_GEOMETRY_SHADER
+                   : ext == "comp" ? GL_COMPUTE_SHADER
+                                   : GL_FRAGMENT_SHADER;
     GLuint sh = glCreateShader(stage);
     label(GL_SHADER, sh, f);
     const char* src = text.c_str();

@@ -78,7 +78,7 @@ struct PassTimer {
 };
 
 // Programs made of shaders/ files (stage from the extension: .vert .geom
-// .frag; several files of one stage are linked together), cached by name.
+// .frag .comp; several files of one stage are linked together), cached by name.
 struct Programs {
   std::string shader_dir;
   std::map<std::string, Program> cache;

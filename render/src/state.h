@@ -62,6 +62,10 @@ struct State {
   // esm / edsm: the depth and edge maps of their faces (1 fitted frustum or 6
   // cube faces) as 2D arrays (silhouette_faces.cpp).
   Texture face_depth, face_edges;
+  // edsm: the frame's silhouette edges per caster (silhouette_edges.cpp): the
+  // lists of record indices, the workgroup sums, an indirect draw per caster.
+  Buffer silhouette_lists, silhouette_groups, silhouette_commands;
+  size_t silhouette_list_size = 0, silhouette_group_size = 0, silhouette_command_size = 0;
   int face_n = 0, face_layers = 0;
   GLenum face_format = 0;
   // Silhouette buffers per caster, baked on first use.
