@@ -9,6 +9,8 @@
 //        +--+             the ground tessellated 2k x 2k has four times the
 //   ==================    triangles and no more silhouette edges (its inner
 //                         edges are coplanar, its border twice as long)
+#include <algorithm>
+#include <cstdio>
 #include <map>
 
 #include "gl_fixtures.h"
@@ -28,6 +30,29 @@ geom::Scene ground_and_box(int k) {
       add_quad(s, {x0, 0, z0}, {x0, 0, z1}, {x1, 0, z1}, {x1, 0, z0});
     }
   add_box(s, box_at({0.3f, 1.2f, -0.2f}, {0.8f, 0.5f, 0.6f}, 20));
+  return s;
+}
+
+// A UV sphere of `rings` x 2 `rings` quads (closed; every edge a candidate:
+// none coplanar) at `centre`, over a ground of 4 x 4 quads.
+geom::Scene sphere_on_ground(int rings, glm::vec3 centre, float radius) {
+  geom::Scene s = ground_and_box(4);
+  const uint32_t base = uint32_t(s.vertex_count());
+  const int segments = 2 * rings;
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const float t = float(M_PI) * float(i) / float(rings), p = 2 * float(M_PI) * float(j) / float(segments);
+      const glm::vec3 v =
+          centre + radius * glm::vec3(std::sin(t) * std::cos(p), std::cos(t), std::sin(t) * std::sin(p));
+      s.positions.insert(s.positions.end(), {v.x, v.y, v.z});
+    }
+  auto at = [&](int i, int j) { return base + uint32_t(i * segments + (j % segments)); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {  // outward: counter-clockwise seen from outside
+      if (i > 0) s.indices.insert(s.indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j)}), s.sources.push_back({});
+      if (i + 1 < rings)
+        s.indices.insert(s.indices.end(), {at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)}), s.sources.push_back({});
+    }
   return s;
 }
 
@@ -135,5 +160,36 @@ TEST(GlPassCounters, EdgePassPrimitivesFollowSilhouetteEdgesNotTriangles) {
     EXPECT_LT(ssm, 4.01);
     EXPECT_GT(ratio(Technique::EdsmGs, "edge distance map"), 3.8);  // the geometry shader's input: every triangle
     EXPECT_LE(ratio(Technique::Edsm, "edge distance map"), 2.0);
+  }
+}
+
+// A caster of many candidate edges (a sphere: thousands, none coplanar): the
+// silhouette edges are found once per frame ("silhouette edges") and the edge
+// passes draw them alone, far fewer primitives than edsm-gs's triangles, with
+// a mask as close to the reference as edsm-gs's.
+TEST(GlPassCounters, EdgePassesDrawOnlyTheSilhouetteOfALargeCaster) {
+  ASSERT_NE(context(), nullptr);
+  const geom::Scene scene = sphere_on_ground(40, {0.2f, 1.6f, 0.1f}, 1.2f);
+  ASSERT_GT(scene.triangle_count(), 6000u);
+  std::string error;
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  for (const geom::Light& light : lights()) {
+    const Frame d = frame(*state, light, Technique::Edsm, 512), g = frame(*state, light, Technique::EdsmGs, 512);
+    const render::PassCounters de = passes(d, "edge distance map"), ge = passes(g, "edge distance map");
+    ASSERT_GT(de.primitives, 0u);
+    EXPECT_LE(4 * de.primitives, ge.primitives) << de.primitives << " against " << ge.primitives;
+    EXPECT_EQ(render::shadow_counters(d.times).gs_invocations, 0u);
+    EXPECT_EQ(std::count_if(d.times.begin(), d.times.end(),
+                            [](const render::PassTime& t) { return t.pass == "silhouette edges"; }),
+              1);
+    const geom::ShadowError e = score(*state, scene, view(), light, Technique::Edsm, 512);
+    const geom::ShadowError r = score(*state, scene, view(), light, Technique::EdsmGs, 512);
+    EXPECT_LE(e.wrong_cast, r.wrong_cast + 3) << "edsm " << e.wrong_cast << ", edsm-gs " << r.wrong_cast;
+    EXPECT_GT(e.cast_pixels, 1000u);
+    std::printf(
+        "edge-pass primitives edsm %llu, edsm-gs %llu; wrong cast-class pixels edsm %zu, edsm-gs %zu (of %zu)\n",
+        (unsigned long long)de.primitives, (unsigned long long)ge.primitives, e.wrong_cast, r.wrong_cast,
+        e.cast_pixels);
   }
 }
