@@ -113,26 +113,33 @@ TEST(GlPassCounters, DepthMapPrimitivesAreTheSceneTriangles) {
   }
 }
 
-// edsm finds its silhouette edges in the vertex shader: no geometry shader
-// runs; edsm-gs, the thesis's path, runs it over every triangle with
-// adjacency, twice per face (one pass per peeled edge).
-TEST(GlPassCounters, EdsmRunsNoGeometryShader) {
+// edsm and sssm find their silhouette edges without a geometry shader;
+// edsm-gs and sssm-gs, the papers' path, run it over every triangle with
+// adjacency in each edge pass (edsm: two per face, one per peeled edge).
+TEST(GlPassCounters, EdsmAndSssmRunNoGeometryShader) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = ground_and_box(8);
   std::string error;
   auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
   ASSERT_TRUE(state) << error;
-  for (const geom::Light& light : lights()) {
-    for (int size : {128, 512}) {
-      const Frame d = frame(*state, light, Technique::Edsm, size);
-      const render::PassCounters c = render::shadow_counters(d.times);
-      ASSERT_TRUE(c.valid);
-      EXPECT_EQ(c.gs_invocations, 0u) << size;
-      EXPECT_GT(passes(d, "edge distance map").fs_invocations, 0u) << size;
-      const Frame g = frame(*state, light, Technique::EdsmGs, size);
-      EXPECT_EQ(render::shadow_counters(g.times).gs_invocations, 2 * scene.triangle_count()) << size;
-    }
-  }
+  struct Pair {
+    Technique vs, gs;
+    const char* edge_pass;
+    uint64_t passes;
+  };
+  for (const Pair& pair : {Pair{Technique::Edsm, Technique::EdsmGs, "edge distance map", 2},
+                           Pair{Technique::Sssm, Technique::SssmGs, "silhouette map", 1}})
+    for (const geom::Light& light : lights())
+      for (int size : {128, 512}) {
+        SCOPED_TRACE(std::string(render::technique_name(pair.vs)) + " " + std::to_string(size));
+        const Frame d = frame(*state, light, pair.vs, size);
+        const render::PassCounters c = render::shadow_counters(d.times);
+        ASSERT_TRUE(c.valid);
+        EXPECT_EQ(c.gs_invocations, 0u);
+        EXPECT_GT(passes(d, pair.edge_pass).fs_invocations, 0u);
+        const Frame g = frame(*state, light, pair.gs, size);
+        EXPECT_EQ(render::shadow_counters(g.times).gs_invocations, pair.passes * scene.triangle_count());
+      }
 }
 
 // Edge passes follow silhouette edges, not triangles: the ground four times
