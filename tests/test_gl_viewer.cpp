@@ -119,7 +119,7 @@ TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
     EXPECT_EQ(differ, 0u);
     EXPECT_GT(labelled, 500u);
   }
-  // All techniques: one panel each, 4 columns for 10-16.
+  // All techniques: one panel each, 4 columns for 10-20.
   const ViewerRun all = geomview(s, obj + " " + kView + " --size 64x48 --compare all -o " + (s / "all.png"));
   ASSERT_EQ(all.exit_code, 0) << all.err;
   const size_t n = render::available_techniques().size();
@@ -128,10 +128,10 @@ TEST(GlViewer, CompareGridIsTheTechniquesSideBySide) {
   EXPECT_EQ(a.width, columns * 64 + (columns - 1) * 2);
   EXPECT_EQ(a.height, rows * 48 + (rows - 1) * 2);
   EXPECT_EQ(all.lines("hud: ").size(), 4 * n);
-  // 2 to 16 panels.
+  // 2 to 20 panels.
   const ViewerRun one = geomview(s, obj + " --compare ssm -o " + (s / "x.png"));
   EXPECT_EQ(one.exit_code, 2);  // bad usage (cli::kExitUsage)
-  EXPECT_NE(one.err.find("2 to 16"), std::string::npos) << one.err;
+  EXPECT_NE(one.err.find("2 to 20"), std::string::npos) << one.err;
 }
 
 TEST(GlViewer, HudFiguresAreTheCliAndTheReference) {

@@ -1,5 +1,5 @@
 // compare.h: techniques side by side. One camera and light, one panel per
-// technique (2 to 16), each labelled with its technique, map size, shadow
+// technique (2 to 20), each labelled with its technique, map size, shadow
 // pass time and error against the exact reference (computed once for the
 // grid); headless into one PNG (--compare), and as the window's grid (C).
 #pragma once

@@ -29,7 +29,7 @@ const char* kUsage =
     "                                    process; the bundled default scene when absent)\n"
     "  --technique NAME[,NAME..]  %s, or all\n"
     "                             (esm: extended shadow maps, Bujnak 2004; not exponential shadow maps)\n"
-    "  --compare NAME,NAME[,..]   a grid of 2 to 16 techniques from one camera and light, each panel labelled\n"
+    "  --compare NAME,NAME[,..]   a grid of 2 to 20 techniques from one camera and light, each panel labelled\n"
     "                             with technique, map size, pass time and error (or all); -o grid.png headless\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"
     "  --up-axis x|y|z            the scene's up axis for the default framing (default: z for Quake 3's\n"
@@ -178,8 +178,8 @@ bool parse_modes(const cli::Args& args, Options& o, std::string& error) {
   if (o.techniques.empty()) o.techniques.push_back(render::Technique::Pcf);
   if (args.has("--compare")) {
     if (!parse_techniques("--compare", args.all("--compare"), o.compare, error)) return false;
-    if (o.compare.size() < 2 || o.compare.size() > 16)
-      return error = "--compare takes 2 to 16 techniques, not " + std::to_string(o.compare.size()), false;
+    if (o.compare.size() < 2 || o.compare.size() > 20)
+      return error = "--compare takes 2 to 20 techniques, not " + std::to_string(o.compare.size()), false;
   }
   o.hud = args.has("--hud");
   o.error = args.has("--error");
