@@ -16,6 +16,8 @@
 //   cube.cpp ............... cube: omnidirectional map of squared distances (Gerasimov 2004)
 //   esm.cpp, edsm.cpp ...... extended shadow map (Bujnak 2004), edge distance shadow map (Kenzel 2013)
 //   edge_pass.h, .cpp ...... the edge pass the silhouette maps share (esm, edsm, sssm, the edge-distance soft ones)
+//   silhouette_edges.cpp ... edsm's and sssm's silhouette edges of the frame's light: a compute pass, an indirect draw
+//   pass_counters.h, .cpp .. pipeline statistics per pass (PassCounters below)
 //   shadow_volume.cpp ...... sv, sv-zpass, sv-zfail: stencil shadow volumes per caster (Arneson)
 //   sssm.cpp ............... sssm: shadow silhouette maps (Sen et al. 2003, Kenzel 2013's baseline)
 //   soft.cpp ............... edsm-soft, pcf-soft: soft shadows of a disc light (light radius; Kenzel 2013, Sect. 6)
