@@ -10,8 +10,10 @@
 // on at least 97% of the cases (30 random frames per light type: point, spot,
 // directional; four map sizes, small ones included, where edges crowd within
 // two texels), and no more wrong pixels than ssm over all of them. The
-// remaining cases are maps of 64 texels or fewer, where an edge that passes
-// the lookups' consistency tests still misplaces the boundary by a texel. The frames: a camera anywhere around and
+// remaining cases (up to 4 of 120 per light type, at every size) are where an
+// edge that passes the lookups' consistency tests still misplaces the
+// boundary by a texel, or edsm's footprint, compared at the sample's depth,
+// differs from ssm's receiver-plane test. The frames: a camera anywhere around and
 // above the bundled scene, near or far, looking at a random point of it; a sun anywhere above the horizon, a point
 // light and a spot anywhere over the scene (beside the camera, behind it, among the receivers). 160 x 120 images.
 #include "geom/import.h"
