@@ -84,7 +84,7 @@ float shadow_visibility(vec3 world, vec3 normal) {
       edge_depth = max(edge_depth, t.g);
     }
   }
-  if (front == 0) return 1.0;                      // no occluder's edge in front of the receiver
+  if (front == 0) return ssm;                      // no edge in front of the receiver
   if (odd_count > 0) return ssm;                   // crossing edges, or too little edge data
   if (p.z <= edge_depth + 1.0e-4) return ssm;      // the receiver's own outline
   if (!one_line(d[0], d[1], d[2], d[3])) return ssm;  // two edges within the footprint

@@ -92,7 +92,8 @@ TEST(GlEdgeShadowMaps, CloserToTheReferenceThanTheSimpleShadowMap) {
 // need more than one frustum: esm and edsm drawn as six cube faces with their
 // edge maps, against the cube technique (Gerasimov 2004's cube map with its 4-tap
 // filter) at two map sizes; the silhouette maps beat it on the cast-shadow
-// class. (ssm draws six fitted faces of its own: render/src/light_fit.cpp.)
+// class, and neither is worse than ssm, which draws six fitted faces of its own
+// (render/src/light_fit.cpp).
 TEST(GlEdgeShadowMaps, PointLightInsideTheSceneAsCubeFaces) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = crossed_pipes();
@@ -106,15 +107,21 @@ TEST(GlEdgeShadowMaps, PointLightInsideTheSceneAsCubeFaces) {
     const geom::ShadowError d = score(*state, scene, view, light, Technique::Edsm, size);
     const geom::ShadowError e = score(*state, scene, view, light, Technique::Esm, size);
     const geom::ShadowError x = score(*state, scene, view, light, Technique::EsmExact, size);
+    const geom::ShadowError m = score(*state, scene, view, light, Technique::Ssm, size);
     std::printf(
-        "point light inside, map %d: wrong cast-class pixels cube %zu, edsm %zu, esm %zu, esm-exact %zu (of %zu)\n",
-        size, s.wrong_cast, d.wrong_cast, e.wrong_cast, x.wrong_cast, s.cast_pixels);
+        "point light inside, map %d: wrong cast-class pixels cube %zu, edsm %zu, esm %zu, esm-exact %zu, ssm %zu (of "
+        "%zu); wrong visible pixels ssm %zu, edsm %zu, esm-exact %zu\n",
+        size, s.wrong_cast, d.wrong_cast, e.wrong_cast, x.wrong_cast, m.wrong_cast, s.cast_pixels, m.wrong_visible,
+        d.wrong_visible, x.wrong_visible);
     SCOPED_TRACE("map " + std::to_string(size));
     EXPECT_GT(s.cast_pixels, 3000u);
     EXPECT_GT(s.wrong_cast, 50u) << "the cube map should show its staircase at this size";
     EXPECT_LE(d.wrong_cast * 10, s.wrong_cast) << "edsm within a tenth of the simple map's (Kenzel 2013, Sect. 5.2)";
     EXPECT_LT(e.wrong_cast, s.wrong_cast);
     EXPECT_LE(x.wrong_cast * 3, s.wrong_cast) << "esm-exact within a third of the simple map's";
+    // Never worse than ssm's six fitted faces (their fallback is ssm's test).
+    EXPECT_LE(d.wrong_visible, m.wrong_visible + 2) << "edsm no worse than ssm";
+    EXPECT_LE(x.wrong_visible, m.wrong_visible + 2) << "esm-exact no worse than ssm";
   }
 }
 
