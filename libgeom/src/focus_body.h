@@ -49,7 +49,12 @@ void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std
                     std::vector<uint32_t>& indices);
 
 // The half-spaces of the convex hull of `points` (outward faces become
-// inside-positive planes). False when the points span no volume.
+// inside-positive planes): the planes of its kMaxHullPlanes largest faces (of
+// distinct directions), each moved to support the hull, so their
+// intersection holds every point and is the hull itself when it has no more
+// faces. Bounded so that clipping a frame's bodies by them stays cheap. In an
+// order that depends on the points alone. False when they span no volume.
+constexpr size_t kMaxHullPlanes = 16;
 bool hull_planes(PositionSpan points, std::vector<Plane>& out);
 
 // H = conv(R u {l}) n S n L, with R the receiver region (already clipped by S,
