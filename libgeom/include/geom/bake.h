@@ -13,7 +13,8 @@
 //                                                            input order (collapsed ones kept: they draw nothing)
 //   weld_remap    WeldRemap         U32     source vertices  Scene vertex -> welded vertex
 //   caster_hull   CasterHull        F64x4   planes           (nx, ny, nz, d) in input coordinates, inside where
-//                                                            n.p + d >= 0: the convex hull of `positions`, as
+//                                                            n.p + d >= 0: the convex hull of `positions` (at
+//                                                            most 16 supporting planes of it), as
 //                                                            BakeOptions::caster_hull computes it (empty when
 //                                                            they span no volume); only when that is set
 //   face_planes   FacePlanes        F32x4   triangles        (nx, ny, nz, d) in input coordinates, n.p + d = 0:
@@ -63,7 +64,7 @@
 namespace geom {
 
 // The convex hull of `points` as planes, 4 doubles each (nx, ny, nz, d), n
-// unit and outward, a point p inside where n.p + d >= 0; false when the points
+// unit and pointing inside, a point p inside where n.p + d >= 0; false when the points
 // span no volume. geom::focus's focus_caster_hull (geom/focus.h, CGAL) is one:
 // the bake takes it as a function so that geom::bake itself links no CGAL.
 using CasterHullFunction = bool (*)(PositionSpan points, std::vector<double>& planes);

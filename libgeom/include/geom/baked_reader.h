@@ -57,7 +57,8 @@
 //   Indices            U32     4       3 x triangles    -      GL_ELEMENT_ARRAY_BUFFER
 //   WeldRemap          U32     4       source vertices  -      (source vertex -> welded vertex)
 //   CasterHull         F64x4   32      planes           input  (nx, ny, nz, d), n unit, inside where n.p + d >= 0:
-//                                                              the convex hull of the positions, for the focus
+//                                                              the convex hull of the positions (at most 16
+//                                                              supporting planes of it), for the focus
 //                                                              (geom/focus.h FocusOptions::caster_hull)
 //   FacePlanes         F32x4   16      triangles        input  (nx, ny, nz, d), n unit, n.p + d = 0
 //   TopologyReport     Utf8    1       bytes            -      (JSON, keys of `geombake info --json`)

@@ -95,7 +95,7 @@ struct FocusBox {
   double max[3];
 };
 
-// A half-space: a point p is inside where n.p + d >= 0 (n unit, outward).
+// A half-space: a point p is inside where n.p + d >= 0 (n unit, pointing inside).
 // The element of a baked file's caster_hull section (F64x4: nx, ny, nz, d).
 struct FocusPlane {
   double n[3];
@@ -160,8 +160,10 @@ struct FocusOptions {
   // Vertices are H's corners plus, at times, points in the middle of edges.
   bool faces = true;
   // Optional shadow casters: S becomes the convex hull of these points
-  // intersected with the scene box (the box alone when empty). The hull is
-  // computed every call (CGAL); static casters pass caster_hull instead.
+  // intersected with the scene box (the box alone when empty); a hull of
+  // more than 16 faces is bounded by the supporting planes of its 16
+  // largest (of distinct directions), so that the frame's clips stay few.
+  // The hull is computed every call (CGAL); static casters pass caster_hull.
   PositionSpan casters;
   // Optional, in place of `casters` (which it overrides): their convex hull
   // computed once, by focus_caster_hull or read from a baked file's
@@ -248,7 +250,8 @@ bool compute_focus(const CameraMatrices& camera, const Light& light, const Focus
                    FocusResult& out);
 
 // The convex hull of static casters as the planes FocusOptions::caster_hull
-// takes (CGAL's 3D hull, once: at load or bake time), 4 doubles per plane
+// takes (CGAL's 3D hull, once: at load or bake time; at most 16 planes, each
+// supporting the hull, see FocusOptions::casters), 4 doubles per plane
 // (nx, ny, nz, d), appended to `planes` after clearing it. The same planes
 // compute_focus makes from FocusOptions::casters. False (planes empty) when
 // the points span no volume or one is not finite. Matches geom/bake.h's
