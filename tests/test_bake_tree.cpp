@@ -260,7 +260,8 @@ TEST(BakeTree, ReportFileOfTheWholeRun) {
   EXPECT_EQ(j["results"][0]["output"], (work / "out" / "cube_att.obj.gbake").string());
   EXPECT_GT(j["results"][0]["topology"]["triangles"].get<int>(), 0);
   EXPECT_EQ(j["results"][1]["ok"], false);
-  EXPECT_NE(j["results"][1]["error"].get<std::string>().find(missing + ": cannot open"), std::string::npos);
+  EXPECT_EQ(j["results"][1]["error"].get<std::string>().rfind(missing + ": ", 0), 0u) << j["results"][1];
+  EXPECT_EQ(j["results"][1]["error_kind"], "not_found") << j["results"][1];
   // Again: the good one is unchanged now.
   r = cli::run({"bake", cube, "-o", (work / "out").string() + "/", "-r", report.string()}, work / "log");
   EXPECT_EQ(r.exit_code, 0) << cli::describe(r);

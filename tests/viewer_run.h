@@ -79,6 +79,7 @@ inline std::string slurp(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
 }
 
+#ifdef GEOMVIEW_EXE  // a test that runs geomview says so (tests/CMakeLists.txt: RUNS geomview)
 // `args` is pasted into a shell command line (the tests quote what needs it).
 inline ViewerRun geomview(const Scratch& s, const std::string& args, const std::string& wrapper = "") {
   ViewerRun r;
@@ -90,6 +91,7 @@ inline ViewerRun geomview(const Scratch& s, const std::string& args, const std::
   r.out = slurp(out), r.err = slurp(err);
   return r;
 }
+#endif
 
 inline geom::PngImage read_rgb(const std::string& path) {
   geom::PngImage image;

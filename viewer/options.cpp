@@ -28,6 +28,7 @@ const char* kUsage =
     "Usage: geomview [FILE] [options]   (FILE: a baked .gbake container, or a mesh or scene file baked in\n"
     "                                    process; the bundled default scene when absent)\n"
     "  --technique NAME[,NAME..]  %s, or all\n"
+    "                             (esm: extended shadow maps, Bujnak 2004; not exponential shadow maps)\n"
     "  --compare NAME,NAME[,..]   a grid of 2 to 16 techniques from one camera and light, each panel labelled\n"
     "                             with technique, map size, pass time and error (or all); -o grid.png headless\n"
     "  --eye X,Y,Z --target X,Y,Z --up X,Y,Z --fovy DEG --near N --far F   the camera\n"

@@ -88,6 +88,150 @@ struct LineReader {
 
 std::string at_line(uint64_t n) { return "line " + std::to_string(n) + ": "; }
 
+// The state of one file's statements, appended to `out` as they are read.
+struct ObjParser {
+  Scene& out;
+  size_t base;  // the vertices `out` held before this file
+  size_t base_indices;
+  uint64_t vertex_count = 0;
+  uint32_t mesh = 0, next_mesh = 0;
+  bool new_group = true;
+  uint64_t lines_points = 0, short_faces = 0;
+  uint64_t unknown_line = 0;  // the first line whose statement is not OBJ
+  std::string unknown_key;
+  // (line, index) of each index 0 and each index beyond the vertices read so
+  // far; checked, in file order, once the vertex count is known.
+  std::vector<std::pair<uint64_t, int64_t>> suspects;
+  std::vector<int64_t> corners;
+
+  explicit ObjParser(Scene& scene) : out(scene), base(scene.vertex_count()), base_indices(scene.indices.size()) {}
+
+  // `v x y z ...`: the first three numbers.
+  bool vertex(const char* p, const char* e, uint64_t number, std::string& error) {
+    float xyz[3];
+    for (float& c : xyz) {
+      std::string_view tok = next_token(p, e);
+      const char* q = tok.data();
+      if (tok.empty()) {
+        error = at_line(number) + "vertex needs 3 coordinates";
+        return false;
+      }
+      if (!scan_float(q, tok.data() + tok.size(), c)) {
+        error = at_line(number) + "bad number " + quote_token(tok);
+        return false;
+      }
+    }
+    out.positions.insert(out.positions.end(), xyz, xyz + 3);
+    ++vertex_count;
+    return true;
+  }
+
+  // One face corner `v`, `v/vt`, `v//vn` or `v/vt/vn` into `corners`, 0-based.
+  bool corner(std::string_view tok, uint64_t number, std::string& error) {
+    const char* q = tok.data();
+    int64_t idx = 0;
+    if (!scan_int(q, tok.data() + tok.size(), idx, "/")) {
+      error = at_line(number) + "bad face corner " + quote_token(tok);
+      return false;
+    }
+    const char* rest = q;  // after the vertex index: "/vt/vn" forms only
+    for (int slashes = 0; rest < tok.data() + tok.size(); ++rest) {
+      const char c = *rest;
+      if (!((c >= '0' && c <= '9') || c == '-' || c == '+' || (c == '/' && ++slashes <= 2))) {
+        error = at_line(number) + "bad face corner " + quote_token(tok);
+        return false;
+      }
+    }
+    if (idx < 0) {
+      if (uint64_t(-(idx + 1)) >= vertex_count) {
+        error = at_line(number) + "face index " + std::to_string(idx) + " out of range (" +
+                std::to_string(vertex_count) + " vertices before it)";
+        return false;
+      }
+      idx = int64_t(vertex_count) + idx;  // 0-based
+    } else {
+      if (uint64_t(idx) > vertex_count || idx == 0) suspects.push_back({number, idx});
+      idx -= 1;
+    }
+    corners.push_back(idx);
+    return true;
+  }
+
+  // `f c0 c1 c2 ...`: a fan of n-2 triangles from the first corner, in the current group.
+  bool face(const char* p, const char* e, uint64_t number, std::string& error) {
+    corners.clear();
+    for (std::string_view tok = next_token(p, e); !tok.empty(); tok = next_token(p, e))
+      if (!corner(tok, number, error)) return false;
+    if (corners.size() < 3) {
+      ++short_faces;
+      return true;
+    }
+    if (new_group) {
+      mesh = next_mesh++;
+      new_group = false;
+    }
+    TriangleSource src;
+    src.mesh = mesh;
+    for (size_t i = 1; i + 1 < corners.size(); ++i) {
+      out.indices.push_back(uint32_t(base + uint64_t(corners[0])));
+      out.indices.push_back(uint32_t(base + uint64_t(corners[i])));
+      out.indices.push_back(uint32_t(base + uint64_t(corners[i + 1])));
+      out.sources.push_back(src);
+    }
+    return true;
+  }
+
+  // One logical line.
+  bool statement(std::string_view line, uint64_t number, std::string& error) {
+    const char* p = line.data();
+    const char* e = p + line.size();
+    std::string_view key = next_token(p, e);
+    if (key.empty() || key[0] == '#') return true;
+    if (const void* hash = std::memchr(p, '#', size_t(e - p))) e = static_cast<const char*>(hash);  // trailing comment
+    if (key == "v") return vertex(p, e, number, error);
+    if (key == "f") return face(p, e, number, error);
+    if (key == "o" || key == "g") {
+      new_group = true;
+    } else if (key == "l" || key == "p") {
+      ++lines_points;
+    } else if (!unknown_line && !is_obj_statement(key)) {
+      unknown_line = number;
+      unknown_key = quote_token(key);
+    }
+    return true;
+  }
+
+  // What can only be judged once the file is read: forward indices, a file that
+  // is no mesh, the index range; then the warnings.
+  bool finish(const std::string& name, std::string& error) {
+    for (const auto& [line_number, idx] : suspects) {
+      if (idx == 0) {
+        error = at_line(line_number) + "face index 0 is invalid (OBJ indices start at 1)";
+        return false;
+      }
+      if (uint64_t(idx) > vertex_count) {
+        error = at_line(line_number) + "face index " + std::to_string(idx) + " out of range (" +
+                std::to_string(vertex_count) + " vertices)";
+        return false;
+      }
+    }
+    if (out.indices.size() == base_indices && unknown_line) {  // no triangle, and text that is not OBJ
+      error = at_line(unknown_line) + unknown_key + " is not an OBJ statement, and the file has no face: not a mesh";
+      return false;
+    }
+    if (base + vertex_count > 0xffffffffu) {
+      error = "more than 4294967295 vertices";
+      return false;
+    }
+    if (lines_points)
+      out.warnings.push_back(name + ": " + std::to_string(lines_points) +
+                             " line and point statements (l, p) skipped; only faces are imported");
+    if (short_faces)
+      out.warnings.push_back(name + ": " + std::to_string(short_faces) + " faces with fewer than 3 corners skipped");
+    return true;
+  }
+};
+
 }  // namespace
 
 bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
@@ -97,126 +241,12 @@ bool import_obj(const ImportInput& in, Scene& out, std::string& error) {
   }
   const char* begin = reinterpret_cast<const char*>(in.data);
   LineReader reader{skip_utf8_bom(begin, begin + in.size), begin + in.size, 1, std::string()};
-
-  const size_t base = out.vertex_count();
-  uint64_t vertex_count = 0;
-  uint32_t mesh = 0, next_mesh = 0;
-  bool new_group = true;
-  uint64_t lines_points = 0, short_faces = 0;
-  const size_t base_indices = out.indices.size();
-  uint64_t unknown_line = 0;  // the first line whose statement is not OBJ
-  std::string unknown_key;
-  // (line, index) of each index 0 and each index beyond the vertices read so
-  // far; checked, in file order, once the vertex count is known.
-  std::vector<std::pair<uint64_t, int64_t>> suspects;
-  std::vector<int64_t> corners;
-
+  ObjParser parser(out);
   std::string_view line;
   uint64_t number = 0;
-  while (reader.next(line, number)) {
-    const char* p = line.data();
-    const char* e = p + line.size();
-    std::string_view key = next_token(p, e);
-    if (key.empty() || key[0] == '#') continue;
-    if (const void* hash = std::memchr(p, '#', size_t(e - p))) e = static_cast<const char*>(hash);  // trailing comment
-    if (key == "v") {
-      float xyz[3];
-      for (float& c : xyz) {
-        std::string_view tok = next_token(p, e);
-        const char* q = tok.data();
-        if (tok.empty()) {
-          error = at_line(number) + "vertex needs 3 coordinates";
-          return false;
-        }
-        if (!scan_float(q, tok.data() + tok.size(), c)) {
-          error = at_line(number) + "bad number " + quote_token(tok);
-          return false;
-        }
-      }
-      out.positions.insert(out.positions.end(), xyz, xyz + 3);
-      ++vertex_count;
-    } else if (key == "f") {
-      corners.clear();
-      for (;;) {
-        std::string_view tok = next_token(p, e);
-        if (tok.empty()) break;
-        const char* q = tok.data();
-        int64_t idx = 0;
-        if (!scan_int(q, tok.data() + tok.size(), idx, "/")) {
-          error = at_line(number) + "bad face corner " + quote_token(tok);
-          return false;
-        }
-        const char* rest = q;  // after the vertex index: "/vt/vn" forms only
-        for (int slashes = 0; rest < tok.data() + tok.size(); ++rest) {
-          const char c = *rest;
-          if (!((c >= '0' && c <= '9') || c == '-' || c == '+' || (c == '/' && ++slashes <= 2))) {
-            error = at_line(number) + "bad face corner " + quote_token(tok);
-            return false;
-          }
-        }
-        if (idx < 0) {
-          if (uint64_t(-(idx + 1)) >= vertex_count) {
-            error = at_line(number) + "face index " + std::to_string(idx) + " out of range (" +
-                    std::to_string(vertex_count) + " vertices before it)";
-            return false;
-          }
-          idx = int64_t(vertex_count) + idx;  // 0-based
-        } else {
-          if (uint64_t(idx) > vertex_count || idx == 0) suspects.push_back({number, idx});
-          idx -= 1;
-        }
-        corners.push_back(idx);
-      }
-      if (corners.size() < 3) {
-        ++short_faces;
-        continue;
-      }
-      if (new_group) {
-        mesh = next_mesh++;
-        new_group = false;
-      }
-      TriangleSource src;
-      src.mesh = mesh;
-      for (size_t i = 1; i + 1 < corners.size(); ++i) {
-        out.indices.push_back(uint32_t(base + uint64_t(corners[0])));
-        out.indices.push_back(uint32_t(base + uint64_t(corners[i])));
-        out.indices.push_back(uint32_t(base + uint64_t(corners[i + 1])));
-        out.sources.push_back(src);
-      }
-    } else if (key == "o" || key == "g") {
-      new_group = true;
-    } else if (key == "l" || key == "p") {
-      ++lines_points;
-    } else if (!unknown_line && !is_obj_statement(key)) {
-      unknown_line = number;
-      unknown_key = quote_token(key);
-    }
-  }
-  for (const auto& [line_number, idx] : suspects) {
-    if (idx == 0) {
-      error = at_line(line_number) + "face index 0 is invalid (OBJ indices start at 1)";
-      return false;
-    }
-    if (uint64_t(idx) > vertex_count) {
-      error = at_line(line_number) + "face index " + std::to_string(idx) + " out of range (" +
-              std::to_string(vertex_count) + " vertices)";
-      return false;
-    }
-  }
-  if (out.indices.size() == base_indices && unknown_line) {  // no triangle, and text that is not OBJ
-    error = at_line(unknown_line) + unknown_key + " is not an OBJ statement, and the file has no face: not a mesh";
-    return false;
-  }
-  if (base + vertex_count > 0xffffffffu) {
-    error = "more than 4294967295 vertices";
-    return false;
-  }
-  if (lines_points)
-    out.warnings.push_back(in.name + ": " + std::to_string(lines_points) +
-                           " line and point statements (l, p) skipped; only faces are imported");
-  if (short_faces)
-    out.warnings.push_back(in.name + ": " + std::to_string(short_faces) + " faces with fewer than 3 corners skipped");
-  return true;
+  while (reader.next(line, number))
+    if (!parser.statement(line, number, error)) return false;
+  return parser.finish(in.name, error);
 }
 
 }  // namespace geom::detail

@@ -117,6 +117,177 @@ bool usable_matrix(const double m[16]) {
   return std::isfinite(det) && bound > 0 && std::fabs(det) > 1e-12 * bound;
 }
 
+// One frame as FRAME.json states it, checked against the limits of cli/view_check.h.
+struct Frame {
+  double eye[3], target[3], up[3], fovy = 0, aspect = 0, near_d = 0, far_d = 0;
+  geom::Light light;
+  geom::FocusBox scene, receivers;
+  geom::FocusOptions options;  // options.receivers points at `receivers` when given
+};
+
+void read_camera(const Json& frame, Frame& f) {
+  const Json& cam = member(frame, "frame", "camera");
+  vec3(cam, "camera", "eye", f.eye);
+  vec3(cam, "camera", "target", f.target);
+  vec3(cam, "camera", "up", f.up);
+  f.fovy = number(cam, "camera", "fovy_degrees"), f.aspect = number(cam, "camera", "aspect");
+  f.near_d = number(cam, "camera", "near");
+  f.far_d = member(cam, "camera", "far").is_null() ? HUGE_VAL : number(cam, "camera", "far");
+  std::string problem;  // the limits of every program's cameras (cli/view_check.h)
+  if (!cli::check_view({f.eye, f.target, f.up, f.fovy, f.aspect, f.near_d, f.far_d, true, false}, "camera", problem))
+    throw BadFrame(problem);
+}
+
+geom::Light read_light(const Json& frame) {
+  const Json& lj = member(frame, "frame", "light");
+  geom::Light light;
+  const Json& type = member(lj, "light", "type");
+  std::string t = type.is_string() ? type.get<std::string>() : "";
+  if (t == "directional") {
+    light.type = geom::LightType::Directional;
+    vec3(lj, "light", "direction", light.direction);
+  } else if (t == "point" || t == "spot") {
+    light.type = t == "point" ? geom::LightType::Point : geom::LightType::Spot;
+    vec3(lj, "light", "position", light.position);
+    if (lj.contains("range")) light.range = number(lj, "light", "range");
+    if (light.range < 0) throw BadFrame("light.range: must not be negative");
+    if (t == "spot") {
+      vec3(lj, "light", "direction", light.direction);
+      double a = number(lj, "light", "spot_angle_degrees");
+      if (!(a > 0 && a <= 90)) throw BadFrame("light.spot_angle_degrees: must lie in (0, 90]");
+      light.outer_cone = a * 3.14159265358979323846 / 180;
+    }
+  } else {
+    throw BadFrame("light.type: expected \"directional\", \"point\" or \"spot\"");
+  }
+  std::string problem;
+  if (!cli::check_light(light, "light", problem)) throw BadFrame(problem);
+  return light;
+}
+
+// The optional keys: receiver_bounds, min_warp_gain, cube_cone_degrees, method.
+void read_options(const Json& frame, Frame& f) {
+  geom::FocusOptions& options = f.options;
+  if (frame.contains("receiver_bounds")) {
+    f.receivers = box(frame["receiver_bounds"], "receiver_bounds");
+    options.receivers = &f.receivers;
+  }
+  if (frame.contains("min_warp_gain")) {
+    options.min_warp_gain = number(frame, "frame", "min_warp_gain");
+    if (!(options.min_warp_gain >= 0 && options.min_warp_gain <= 1))
+      throw BadFrame("min_warp_gain: must lie in [0, 1]");
+  }
+  if (frame.contains("cube_cone_degrees")) {
+    options.cube_cone_degrees = number(frame, "frame", "cube_cone_degrees");
+    if (!(options.cube_cone_degrees >= 0 && options.cube_cone_degrees < 360))
+      throw BadFrame("cube_cone_degrees: must lie in [0, 360)");
+  }
+  if (frame.contains("method")) {
+    const Json& m = frame["method"];
+    std::string name = m.is_string() ? m.get<std::string>() : "";
+    if (name == "psm")
+      options.method = geom::FocusMethod::Psm;
+    else if (name == "lispsm")
+      options.method = geom::FocusMethod::Lispsm;
+    else if (name == "uniform")
+      options.method = geom::FocusMethod::Uniform;
+    else
+      throw BadFrame("method: expected \"psm\", \"lispsm\" or \"uniform\"");
+  }
+}
+
+// The frame's text, parsed and checked in the order of its keys' use.
+void read_frame(const std::string& text, Frame& f) {
+  check_frame_text(text);
+  Json frame = Json::parse(text);  // throws on bad JSON and on anything after the value
+  read_camera(frame, f);
+  f.light = read_light(frame);
+  f.scene = box(member(frame, "frame", "scene_bounds"), "scene_bounds");
+  read_options(frame, f);
+}
+
+// The focus of the frame. The matrix a frame gives must be usable; where the
+// method's is not, the uniform matrix of the same frame is (fallback_kind
+// "unusable_matrix"); where that is not either, the frame is an error.
+// Returns the fallback kind.
+const char* focus_frame(const Frame& f, geom::FocusResult& r) {
+  geom::CameraMatrices camera = geom::camera_look_at(f.eye, f.target, f.up, f.fovy, f.aspect, f.near_d, f.far_d);
+  if (!geom::compute_focus(camera, f.light, f.scene, f.options, r))
+    throw BadFrame(std::string("invalid frame: ") + r.reason);
+  const char* fallback_kind = geom::focus_fallback_name(r.fallback);
+  if (!usable_matrix(r.matrix)) {
+    geom::FocusOptions uniform = f.options;
+    uniform.method = geom::FocusMethod::Uniform;
+    if (!geom::compute_focus(camera, f.light, f.scene, uniform, r) || !usable_matrix(r.matrix))
+      throw BadFrame("no usable shadow matrix for this frame (not finite or singular, uniform too)");
+    r.reason = "the method's matrix was not finite or singular: uniform used";
+    fallback_kind = "unusable_matrix";
+  }
+  return fallback_kind;
+}
+
+std::string num(double v) {
+  char buf[32];
+  if (!std::isfinite(v)) return std::string("null");
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return std::string(buf);
+}
+std::string str(const char* text) { return Json(text).dump(); }
+std::string numbers16(const double m[16]) {
+  std::string o;
+  for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(m[i]);
+  return o;
+}
+
+// focus_vertices, focus_faces, matrix and faces: the geometry of the result.
+std::string geometry_json(const geom::FocusResult& r) {
+  std::string o = "  \"focus_vertices\": [";
+  for (size_t i = 0; i < r.vertex_count(); ++i)
+    o += std::string(i ? ",\n    [" : "\n    [") + num(r.vertices[3 * i]) + ", " + num(r.vertices[3 * i + 1]) + ", " +
+         num(r.vertices[3 * i + 2]) + "]";
+  o += r.vertex_count() ? "\n  ],\n" : "],\n";
+  o += "  \"focus_faces\": [";
+  size_t base = 0;
+  for (size_t f = 0; f < r.face_sizes.size(); ++f) {
+    o += f ? ", [" : "[";
+    for (uint32_t i = 0; i < r.face_sizes[f]; ++i) o += (i ? ", " : "") + std::to_string(r.face_indices[base + i]);
+    o += "]";
+    base += r.face_sizes[f];
+  }
+  o += "],\n  \"matrix\": [" + numbers16(r.matrix);
+  // A point light's six fitted cube faces (+X -X +Y -Y +Z -Z); [] when one map serves.
+  o += "],\n  \"faces\": [";
+  for (int f = 0; r.cube && f < 6; ++f) {
+    const geom::FocusFace& face = r.cube_faces[f];
+    o += std::string(f ? ",\n" : "\n") + "    {\"matrix\": [" + numbers16(face.matrix);
+    o += "], \"near\": " + num(face.near) + ", \"far\": " + num(face.far) +
+         ", \"empty\": " + (face.empty ? "true" : "false") +
+         ", \"method\": " + str(geom::focus_method_name(face.method)) + ", \"focused\": [" + numbers16(face.focused);
+    o += "]}";
+  }
+  o += r.cube ? "\n  ]\n}\n" : "]\n}\n";
+  return o;
+}
+
+// Compact output: one key per line, number arrays on one line.
+std::string focus_json(const geom::FocusResult& r, const geom::FocusOptions& options, const char* fallback_kind) {
+  std::string o = "{\n";
+  o += "  \"method\": " + str(geom::focus_method_name(r.method)) + ",\n";
+  o += "  \"requested_method\": " + str(geom::focus_method_name(options.method)) + ",\n";
+  o += "  \"fallback\": " + (std::string(fallback_kind) == "none" ? std::string("null") : str(r.reason)) + ",\n";
+  o += "  \"fallback_kind\": " + str(fallback_kind) + ",\n";
+  o += "  \"light_kind\": " + str(geom::light_kind_name(r.light_kind)) + ",\n";
+  o += "  \"psm_light_kind\": " + str(geom::light_kind_name(r.psm_light_kind)) + ",\n";
+  o += std::string("  \"needs_cube_map\": ") + (r.needs_cube_map ? "true" : "false") + ",\n";
+  o += "  \"light_near\": " + num(r.light_near) + ",\n";
+  o += std::string("  \"near_floor_cut\": ") + (r.near_floor_cut ? "true" : "false") + ",\n";
+  o += "  \"camera_shift\": " + num(r.camera_shift) + ",\n";
+  o += "  \"psm_near\": " + num(r.psm_near) + ",\n";
+  o += "  \"psm_far\": " + num(r.psm_far) + ",\n";
+  o += "  \"lispsm_n\": " + num(r.lispsm_n) + ",\n";
+  return o + geometry_json(r);
+}
+
 int run_focus(const std::vector<std::string>& argv) {
   cli::Args args(argv, {"--help", "-h"}, {});
   if (args.has("--help") || args.has("-h")) {
@@ -135,139 +306,11 @@ int run_focus(const std::vector<std::string>& argv) {
     return 1;
   }
   try {
-    check_frame_text(text);
-    Json frame = Json::parse(text);  // throws on bad JSON and on anything after the value
-    const Json& cam = member(frame, "frame", "camera");
-    double eye[3], target[3], up[3];
-    vec3(cam, "camera", "eye", eye);
-    vec3(cam, "camera", "target", target);
-    vec3(cam, "camera", "up", up);
-    double fovy = number(cam, "camera", "fovy_degrees"), aspect = number(cam, "camera", "aspect");
-    double near_d = number(cam, "camera", "near");
-    double far_d = member(cam, "camera", "far").is_null() ? HUGE_VAL : number(cam, "camera", "far");
-    std::string problem;  // the limits of every program's cameras (cli/view_check.h)
-    if (!cli::check_view({eye, target, up, fovy, aspect, near_d, far_d, true, false}, "camera", problem))
-      throw BadFrame(problem);
-
-    const Json& lj = member(frame, "frame", "light");
-    geom::Light light;
-    const Json& type = member(lj, "light", "type");
-    std::string t = type.is_string() ? type.get<std::string>() : "";
-    if (t == "directional") {
-      light.type = geom::LightType::Directional;
-      vec3(lj, "light", "direction", light.direction);
-    } else if (t == "point" || t == "spot") {
-      light.type = t == "point" ? geom::LightType::Point : geom::LightType::Spot;
-      vec3(lj, "light", "position", light.position);
-      if (lj.contains("range")) light.range = number(lj, "light", "range");
-      if (light.range < 0) throw BadFrame("light.range: must not be negative");
-      if (t == "spot") {
-        vec3(lj, "light", "direction", light.direction);
-        double a = number(lj, "light", "spot_angle_degrees");
-        if (!(a > 0 && a <= 90)) throw BadFrame("light.spot_angle_degrees: must lie in (0, 90]");
-        light.outer_cone = a * 3.14159265358979323846 / 180;
-      }
-    } else {
-      throw BadFrame("light.type: expected \"directional\", \"point\" or \"spot\"");
-    }
-    if (!cli::check_light(light, "light", problem)) throw BadFrame(problem);
-    geom::FocusBox scene = box(member(frame, "frame", "scene_bounds"), "scene_bounds");
-    geom::FocusOptions options;
-    geom::FocusBox receivers;
-    if (frame.contains("receiver_bounds")) {
-      receivers = box(frame["receiver_bounds"], "receiver_bounds");
-      options.receivers = &receivers;
-    }
-    if (frame.contains("min_warp_gain")) {
-      options.min_warp_gain = number(frame, "frame", "min_warp_gain");
-      if (!(options.min_warp_gain >= 0 && options.min_warp_gain <= 1))
-        throw BadFrame("min_warp_gain: must lie in [0, 1]");
-    }
-    if (frame.contains("cube_cone_degrees")) {
-      options.cube_cone_degrees = number(frame, "frame", "cube_cone_degrees");
-      if (!(options.cube_cone_degrees >= 0 && options.cube_cone_degrees < 360))
-        throw BadFrame("cube_cone_degrees: must lie in [0, 360)");
-    }
-    if (frame.contains("method")) {
-      const Json& m = frame["method"];
-      std::string name = m.is_string() ? m.get<std::string>() : "";
-      if (name == "psm")
-        options.method = geom::FocusMethod::Psm;
-      else if (name == "lispsm")
-        options.method = geom::FocusMethod::Lispsm;
-      else if (name == "uniform")
-        options.method = geom::FocusMethod::Uniform;
-      else
-        throw BadFrame("method: expected \"psm\", \"lispsm\" or \"uniform\"");
-    }
-
-    geom::CameraMatrices camera = geom::camera_look_at(eye, target, up, fovy, aspect, near_d, far_d);
+    Frame frame;
+    read_frame(text, frame);
     geom::FocusResult r;
-    if (!geom::compute_focus(camera, light, scene, options, r))
-      throw BadFrame(std::string("invalid frame: ") + r.reason);
-    // The matrix a frame gives must be usable; where the method's is not, the
-    // uniform matrix of the same frame is (fallback_kind "unusable_matrix");
-    // where that is not either, the frame is an error.
-    const char* fallback_kind = geom::focus_fallback_name(r.fallback);
-    if (!usable_matrix(r.matrix)) {
-      geom::FocusOptions uniform = options;
-      uniform.method = geom::FocusMethod::Uniform;
-      if (!geom::compute_focus(camera, light, scene, uniform, r) || !usable_matrix(r.matrix))
-        throw BadFrame("no usable shadow matrix for this frame (not finite or singular, uniform too)");
-      r.reason = "the method's matrix was not finite or singular: uniform used";
-      fallback_kind = "unusable_matrix";
-    }
-
-    // Compact output: one key per line, number arrays on one line.
-    auto num = [](double v) {
-      char buf[32];
-      if (!std::isfinite(v)) return std::string("null");
-      std::snprintf(buf, sizeof buf, "%.17g", v);
-      return std::string(buf);
-    };
-    auto str = [](const char* text) { return Json(text).dump(); };
-    std::string o = "{\n";
-    o += "  \"method\": " + str(geom::focus_method_name(r.method)) + ",\n";
-    o += "  \"requested_method\": " + str(geom::focus_method_name(options.method)) + ",\n";
-    o += "  \"fallback\": " + (std::string(fallback_kind) == "none" ? std::string("null") : str(r.reason)) + ",\n";
-    o += "  \"fallback_kind\": " + str(fallback_kind) + ",\n";
-    o += "  \"light_kind\": " + str(geom::light_kind_name(r.light_kind)) + ",\n";
-    o += "  \"psm_light_kind\": " + str(geom::light_kind_name(r.psm_light_kind)) + ",\n";
-    o += std::string("  \"needs_cube_map\": ") + (r.needs_cube_map ? "true" : "false") + ",\n";
-    o += "  \"light_near\": " + num(r.light_near) + ",\n";
-    o += std::string("  \"near_floor_cut\": ") + (r.near_floor_cut ? "true" : "false") + ",\n";
-    o += "  \"camera_shift\": " + num(r.camera_shift) + ",\n";
-    o += "  \"psm_near\": " + num(r.psm_near) + ",\n";
-    o += "  \"psm_far\": " + num(r.psm_far) + ",\n";
-    o += "  \"lispsm_n\": " + num(r.lispsm_n) + ",\n";
-    o += "  \"focus_vertices\": [";
-    for (size_t i = 0; i < r.vertex_count(); ++i)
-      o += std::string(i ? ",\n    [" : "\n    [") + num(r.vertices[3 * i]) + ", " + num(r.vertices[3 * i + 1]) + ", " +
-           num(r.vertices[3 * i + 2]) + "]";
-    o += r.vertex_count() ? "\n  ],\n" : "],\n";
-    o += "  \"focus_faces\": [";
-    size_t base = 0;
-    for (size_t f = 0; f < r.face_sizes.size(); ++f) {
-      o += f ? ", [" : "[";
-      for (uint32_t i = 0; i < r.face_sizes[f]; ++i) o += (i ? ", " : "") + std::to_string(r.face_indices[base + i]);
-      o += "]";
-      base += r.face_sizes[f];
-    }
-    o += "],\n  \"matrix\": [";
-    for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(r.matrix[i]);
-    // A point light's six fitted cube faces (+X -X +Y -Y +Z -Z); [] when one map serves.
-    o += "],\n  \"faces\": [";
-    for (int f = 0; r.cube && f < 6; ++f) {
-      const geom::FocusFace& face = r.cube_faces[f];
-      o += std::string(f ? ",\n" : "\n") + "    {\"matrix\": [";
-      for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(face.matrix[i]);
-      o += "], \"near\": " + num(face.near) + ", \"far\": " + num(face.far) +
-           ", \"empty\": " + (face.empty ? "true" : "false") +
-           ", \"method\": " + str(geom::focus_method_name(face.method)) + ", \"focused\": [";
-      for (int i = 0; i < 16; ++i) o += (i ? ", " : "") + num(face.focused[i]);
-      o += "]}";
-    }
-    o += r.cube ? "\n  ]\n}\n" : "]\n}\n";
+    const char* fallback_kind = focus_frame(frame, r);
+    const std::string o = focus_json(r, frame.options, fallback_kind);
     std::fwrite(o.data(), 1, o.size(), stdout);
     return 0;
   } catch (const std::exception& e) {  // nlohmann parse errors and BadFrame

@@ -41,6 +41,64 @@ const char* kInfoHelp =
     "  --timeout S         refuse inputs that take longer than S seconds (the others go on)\n"
     "  --allow-outside-uris  read glTF buffers outside the asset's folder too\n";
 
+// What every input is read and analysed with.
+struct InfoSettings {
+  geom::ImportOptions import;
+  geom::PipelineOptions pipeline;
+  uint64_t max_memory = 0;
+  double timeout = 0;
+  bool json = false, verbose = false;
+};
+
+// One input's outcome: the text to print for it (empty: nothing, as for a
+// failed input without --json, whose error is on stderr already).
+struct InfoEntry {
+  std::string text;
+  bool failed = false, timed_out = false;
+};
+
+// Each input a fault domain (fault.h), on a thread of its own under --timeout.
+// The work captures copies and shared buffers: a timed-out thread may outlive this call.
+InfoEntry info_one(const std::string& input, const InfoSettings& s) {
+  auto text = std::make_shared<std::string>();
+  auto warnings = std::make_shared<std::vector<std::string>>();
+  InfoEntry entry;
+  const std::string error = guarded_with_timeout(
+      input, s.max_memory, s.timeout,
+      [=] {
+        auto t0 = std::chrono::steady_clock::now();
+        geom::ImportResult imported = geom::import_file(input, s.import);
+        if (!imported.ok) return imported.error;
+        geom::Report report;
+        report.file = input;
+        if (s.verbose)
+          report.stages.push_back({"import",
+                                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                                   geom::peak_rss_bytes()});
+        geom::analyze(imported.scene, s.pipeline, report);
+        *warnings = report.warnings;
+        *text = s.json ? geom::report_json(report) + "\n" : geom::report_text(report);
+        return std::string();
+      },
+      entry.timed_out);
+  if (!error.empty()) {
+    std::fprintf(stderr, "Error: %s\n", error.c_str());
+    entry.failed = true;
+    if (!s.json) return entry;
+    const ErrorKind kind = entry.timed_out ? ErrorKind::Timeout : classify_import_error(input, error);
+    entry.text = "{\"input\":" + json_quote(input) + ",\"ok\":false,\"error\":" + json_quote(error) +
+                 ",\"error_kind\":\"" + error_kind_name(kind) + "\"}\n";
+    return entry;
+  }
+  if (s.json) {  // the report's object, its input and "ok" first
+    entry.text = "{\"input\":" + json_quote(input) + ",\"ok\":true," + text->substr(1);
+    return entry;
+  }
+  for (const std::string& w : *warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+  entry.text = *text;
+  return entry;
+}
+
 int run_info(const std::vector<std::string>& argv) {
   constexpr unsigned kShared = kImportFlags | kPipelineFlags | kLimitFlags;
   cli::Args args(argv, with_shared_flags({"--json", "-v", "--help", "-h"}, kShared, false),
@@ -55,9 +113,6 @@ int run_info(const std::vector<std::string>& argv) {
   }
   SharedFlags shared;
   if (!parse_shared_flags(args, kShared, shared)) return 2;
-  const geom::ImportOptions& options = shared.import;
-  const uint64_t max_memory = shared.max_memory;
-  const double timeout = shared.timeout;
   std::vector<std::string> inputs;
   if (!expand_inputs(args.positional(), inputs)) return 2;
   if (inputs.empty()) {
@@ -65,52 +120,21 @@ int run_info(const std::vector<std::string>& argv) {
     return 2;
   }
   if (args.has("-o") && !check_output_file(inputs, "-o", args.get("-o"))) return 2;  // never an input
-  const bool json = args.has("--json"), verbose = args.has("-v");
-  geom::PipelineOptions pipeline = shared.pipeline;
-  pipeline.timing = verbose;
+  InfoSettings settings{shared.import,  shared.pipeline,    shared.max_memory,
+                        shared.timeout, args.has("--json"), args.has("-v")};
+  settings.pipeline.timing = settings.verbose;
   std::string out;
   int failed = 0;
   bool any_timed_out = false;
   for (const std::string& input : inputs) {
-    // Each input a fault domain (fault.h), on a thread of its own under --timeout.
-    auto text = std::make_shared<std::string>();
-    auto warnings = std::make_shared<std::vector<std::string>>();
-    bool timed_out = false;
-    const std::string error = guarded_with_timeout(
-        input, max_memory, timeout,
-        [=] {
-          auto t0 = std::chrono::steady_clock::now();
-          geom::ImportResult imported = geom::import_file(input, options);
-          if (!imported.ok) return imported.error;
-          geom::Report report;
-          report.file = input;
-          if (verbose)
-            report.stages.push_back({"import",
-                                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                                     geom::peak_rss_bytes()});
-          geom::analyze(imported.scene, pipeline, report);
-          *warnings = report.warnings;
-          *text = json ? geom::report_json(report) + "\n" : geom::report_text(report);
-          return std::string();
-        },
-        timed_out);
-    any_timed_out = any_timed_out || timed_out;
-    if (!error.empty()) {
-      std::fprintf(stderr, "Error: %s\n", error.c_str());
-      ++failed;
-      if (!json) continue;
-      const ErrorKind kind = timed_out ? ErrorKind::Timeout : classify_import_error(input, error);
-      *text = "{\"input\":" + json_quote(input) + ",\"ok\":false,\"error\":" + json_quote(error) +
-              ",\"error_kind\":\"" + error_kind_name(kind) + "\"}\n";
-    } else if (json) {  // the report's object, its input and "ok" first
-      *text = "{\"input\":" + json_quote(input) + ",\"ok\":true," + text->substr(1);
-    }
-    if (!json && error.empty())
-      for (const std::string& w : *warnings) std::fprintf(stderr, "Warning: %s\n", w.c_str());
+    const InfoEntry entry = info_one(input, settings);
+    failed += entry.failed;
+    any_timed_out = any_timed_out || entry.timed_out;
+    if (entry.failed && !settings.json) continue;
     if (args.has("-o"))
-      out += *text;
+      out += entry.text;
     else
-      std::fputs(text->c_str(), stdout), std::fflush(stdout);
+      std::fputs(entry.text.c_str(), stdout), std::fflush(stdout);
   }
   if (args.has("-o")) {
     std::string error;

@@ -306,7 +306,8 @@ int usage(const std::string& error) {
   if (!error.empty()) cli::error("%s", error.c_str());
   std::fprintf(error.empty() ? stdout : stderr,
                "usage: geombench [--quick] [-o DIR] [--scenes a,b] [--techniques a,b] [--sizes 256,1024]\n"
-               "                 [--size WxH] [--frames N] [--no-bake] [--no-render] [--light-radius R]\n");
+               "                 [--size WxH] [--frames N] [--no-bake] [--no-render] [--light-radius R]\n"
+               "  (technique esm: extended shadow maps, Bujnak 2004; not exponential shadow maps)\n");
   return error.empty() ? cli::kExitOk : cli::kExitUsage;
 }
 
