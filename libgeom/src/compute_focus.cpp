@@ -106,11 +106,16 @@ static LightKind post_perspective_kind(const Frame& fr) {
 static void receiver_region(Frame& fr, const Light& light, const FocusOptions& options, FocusResult& out) {
   V3 corners[8];
   if (view_frustum(fr, corners)) {
-    frustum_polytope(corners, fr.receivers);
-    clip_polytope(fr.receivers, fr.s_planes.data(), fr.s_planes.size(), fr.eps, fr.scratch);
+    view_and_box(fr, corners, fr.box);
+    if (fr.s_hull) {  // S's body cut by V's faces (v_planes before the receiver bounds)
+      fr.receivers = fr.s_body;
+      clip_polytope(fr.receivers, fr.v_planes.data(), fr.v_planes.size() - fr.r_planes.size(), fr.eps, fr.scratch);
+    } else {
+      frustum_polytope(corners, fr.receivers);
+      clip_polytope(fr.receivers, fr.s_planes.data(), fr.s_planes.size(), fr.eps, fr.scratch);
+    }
     clip_polytope(fr.receivers, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
     clip_polytope(fr.receivers, fr.r_planes.data(), fr.r_planes.size(), fr.eps, fr.scratch);
-    view_and_box(fr, corners, fr.box);
   } else {
     fr.receivers.clear();
   }
@@ -135,8 +140,11 @@ static void focus_body(Frame& fr, StageTimes* times) {
   clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
   const V3 light = fr.directional ? fr.towards_light : fr.light_pos;
   const V3 axis = fr.directional ? fr.towards_light : fr.light_axis;
-  if (!focus_by_planes(fr.r_verts, light, fr.directional, axis, fr.v_planes.data(), fr.v_planes.size(), clip.data(),
-                       clip.size(), fr.box, fr.eps, fr.hull_clip_planes, fr.body, fr.scratch, times))
+  // With S's body as the start, only L's planes are left to clip by.
+  const size_t skip = fr.s_hull ? fr.s_planes.size() : 0;
+  if (!focus_by_planes(fr.r_verts, light, fr.directional, axis, fr.v_planes.data(), fr.v_planes.size(),
+                       clip.data() + skip, clip.size() - skip, fr.box, fr.eps, fr.hull_clip_planes, fr.body, fr.scratch,
+                       times, fr.s_hull ? &fr.s_body : nullptr))
     focus_hull(fr.receivers, light, fr.directional, reach, clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body,
                fr.scratch, times);
 }

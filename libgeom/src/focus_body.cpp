@@ -626,7 +626,8 @@ namespace focus {
 
 bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
                      size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
-                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times) {
+                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times,
+                     const Polytope* start) {
   using Clock = std::chrono::steady_clock;
   Clock::time_point t0 = times ? Clock::now() : Clock::time_point();
   out.clear();
@@ -679,7 +680,10 @@ bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional,
     planes.push_back(p);
   }
   planes.insert(planes.end(), k_planes, k_planes + k_count);
-  frustum_polytope(box, out);
+  if (start)
+    out = *start;
+  else
+    frustum_polytope(box, out);
   Clock::time_point t1 = times ? Clock::now() : Clock::time_point();
   clip_polytope(out, planes.data(), planes.size(), eps, scratch);
   if (times) {

@@ -76,9 +76,13 @@ void focus_hull(const Polytope& receivers, V3 light, bool directional, double re
 // projected from the light along `axis` (point: every vertex lies at least a
 // positive distance along it; directional: axis is the light direction).
 // False when the silhouette has no area (the caller falls back to focus_hull).
+// `start` (may be null): a convex body inside the box holding K's part that
+// `k_planes` then need not repeat (S cut by the casters' hull, made once per
+// frame), clipped in the box's place.
 bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
                      size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
-                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times = nullptr);
+                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times = nullptr,
+                     const Polytope* start = nullptr);
 
 }  // namespace focus
 }  // namespace geom

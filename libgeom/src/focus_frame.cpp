@@ -126,6 +126,7 @@ static double scene_bounds(FocusBox& box, const Light& light, Frame& fr, FocusRe
 static bool scene_planes(const FocusBox& box, const FocusOptions& opt, Frame& fr, FocusResult& out) {
   fr.s_planes.clear();
   box_planes(box.min, box.max, fr.s_planes);
+  fr.s_hull = false;
   if (opt.caster_hull.size() > 0) {
     for (size_t i = 0; i < opt.caster_hull.size(); ++i) {
       const FocusPlane& h = opt.caster_hull[i];
@@ -143,6 +144,13 @@ static bool scene_planes(const FocusBox& box, const FocusOptions& opt, Frame& fr
     else
       set_fallback(out, FocusFallback::DegenerateScene,
                    "the casters span no volume (or hold a non-finite point): the scene box alone is S");
+  }
+  if (fr.s_planes.size() > 6) {
+    V3 corners[8];
+    scene_corners(fr, corners);
+    frustum_polytope(corners, fr.s_body);
+    clip_polytope(fr.s_body, fr.s_planes.data() + 6, fr.s_planes.size() - 6, fr.eps, fr.scratch);
+    fr.s_hull = true;
   }
   fr.r_planes.clear();
   if (opt.receivers) {
