@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "geom/bake.h"
@@ -87,7 +88,8 @@ void expect_same(const FocusResult& a, const FocusResult& b) {
 
 TEST(FocusCasterHull, PrecomputedEqualsPerFrame) {
   std::mt19937 rng(2027);
-  int cut = 0;  // frames where the casters changed H (so the hull mattered)
+  int cut = 0;    // frames where the casters changed H (so the hull mattered)
+  int empty = 0;  // frames whose H is empty
   for (int trial = 0; trial < 600; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
     Frame f = random_frame(rng, trial);
@@ -107,12 +109,29 @@ TEST(FocusCasterHull, PrecomputedEqualsPerFrame) {
     compute_focus(f.camera, f.light, f.box, once, b);
     compute_focus(f.camera, f.light, f.box, none, c);
     expect_same(a, b);
+    // S's body is kept per thread while the planes stay the same: a thread
+    // that starts afresh (nothing kept) gives the same answer.
+    if (trial % 10 == 0) {
+      FocusResult fresh;
+      std::thread([&] { compute_focus(f.camera, f.light, f.box, once, fresh); }).join();
+      expect_same(fresh, b);
+    }
+    // H lies in S: inside every hull plane (and so near the casters), and is
+    // rarely empty (a frame's S made from other planes, or none, would fail).
+    empty += b.fallback == FocusFallback::EmptyFocus;
+    for (size_t v = 0; v + 2 < b.vertices.size(); v += 3)
+      for (size_t p = 0; p < planes.size(); p += 4)
+        ASSERT_GE(planes[p] * b.vertices[v] + planes[p + 1] * b.vertices[v + 1] + planes[p + 2] * b.vertices[v + 2] +
+                      planes[p + 3],
+                  -1e-6 * (1 + std::fabs(planes[p + 3])))
+            << "H's vertex " << v / 3 << " outside hull plane " << p / 4;
     if (HasFailure()) return;
     bool differs = false;
     for (int i = 0; i < 16; ++i) differs = differs || std::fabs(a.matrix[i] - c.matrix[i]) > 1e-9;
     cut += differs;
   }
   EXPECT_GT(cut, 300) << "the casters should change most frames' focus";
+  EXPECT_LT(empty, 200) << "H should hold receivers in most frames (114 of 600 are empty: nothing seen is in S)";
 }
 
 // The hull's planes hold every caster (within rounding); a flat or non-finite

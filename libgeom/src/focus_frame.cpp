@@ -121,6 +121,31 @@ static double scene_bounds(FocusBox& box, const Light& light, Frame& fr, FocusRe
   return std::sqrt(diag);
 }
 
+// S as a body: the box cut by the hull's planes (s_planes after the box's
+// six). Static casters give the same planes frame after frame: the body of
+// the last planes and tolerance is kept per thread and reused while they are
+// equal, value for value (the same body the clips would make again).
+static void s_body(Frame& fr) {
+  thread_local std::vector<Plane> planes;
+  thread_local double eps = -1;
+  thread_local Polytope body;
+  const auto same = [&](const Plane& a, const Plane& b) {
+    return a.n.x == b.n.x && a.n.y == b.n.y && a.n.z == b.n.z && a.d == b.d;
+  };
+  if (eps == fr.eps && planes.size() == fr.s_planes.size() &&
+      std::equal(planes.begin(), planes.end(), fr.s_planes.begin(), same)) {
+    fr.s_body = body;
+    return;
+  }
+  V3 corners[8];
+  scene_corners(fr, corners);
+  frustum_polytope(corners, fr.s_body);
+  clip_polytope(fr.s_body, fr.s_planes.data() + 6, fr.s_planes.size() - 6, fr.eps, fr.scratch);
+  planes = fr.s_planes;
+  eps = fr.eps;
+  body = fr.s_body;
+}
+
 // S: the box's planes, then the casters' hull (precomputed, or from the
 // points); the receiver bounds' planes. False for a non-finite hull plane.
 static bool scene_planes(const FocusBox& box, const FocusOptions& opt, Frame& fr, FocusResult& out) {
@@ -146,10 +171,7 @@ static bool scene_planes(const FocusBox& box, const FocusOptions& opt, Frame& fr
                    "the casters span no volume (or hold a non-finite point): the scene box alone is S");
   }
   if (fr.s_planes.size() > 6) {
-    V3 corners[8];
-    scene_corners(fr, corners);
-    frustum_polytope(corners, fr.s_body);
-    clip_polytope(fr.s_body, fr.s_planes.data() + 6, fr.s_planes.size() - 6, fr.eps, fr.scratch);
+    s_body(fr);
     fr.s_hull = true;
   }
   fr.r_planes.clear();
