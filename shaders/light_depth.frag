@@ -1,6 +1,6 @@
 #version 450 core
 // Linear light depth of the focused maps (psm, lispsm, uniform), linked into
-// both their depth pass (depth_linear.frag) and their lookup (lookup_focused.frag).
+// both their depth pass (depth_linear.frag) and their lookup (lookup_focused_faces.frag).
 // The warped map of a perspective shadow map (Stamminger and Drettakis 2002) keeps its light matrix for
 // x, y only: the post-perspective z/w of the warp crowds the far receivers'
 // depths into a sliver of [0, 1] (and a slope-scaled glPolygonOffset measured
@@ -17,4 +17,10 @@ uniform vec2 u_depth_range;
 float light_depth(vec3 p) {
   const float s = u_light.w == 0.0 ? -dot(p, u_light.xyz) / max(length(u_light.xyz), 1e-30) : distance(p, u_light.xyz);
   return (s - u_depth_range.x) * u_depth_range.y;
+}
+
+// The world gradient of light_depth at p (the receiver-plane test's slope, depth_plane.frag).
+vec3 light_depth_gradient(vec3 p) {
+  const vec3 d = u_light.w == 0.0 ? -u_light.xyz : p - u_light.xyz;
+  return d / max(length(d), 1e-30) * u_depth_range.y;
 }

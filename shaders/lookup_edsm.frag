@@ -5,47 +5,57 @@
 // shaders/edsm_edges.frag: per texel the two nearest edges as lines, distance
 // from the texel's centre and normal angle, with their light depths).
 // The depth comparisons of the 2 x 2 texel footprint (textureGather on the
-// comparison sampler) say whether the sample is fully lit, fully shadowed or
-// near a silhouette (the filtered comparison strictly between 0 and 1). There:
+// comparison sampler, at the sample's depth, against the map drawn with the
+// slope-scaled offset the edge pass needs) say whether the sample is fully
+// lit, fully shadowed or near a silhouette (the comparisons differ). There:
 //  1. Only edges in front of the receiver take part (kInFront): an edge at the
 //     receiver's depth is its own outline and casts nothing on it. No such
-//     edge in any of the four texels: lit (the comparisons differ from the
-//     receiver's own slope or outline alone). This replaces the nearest
-//     comparison of the earlier lookup there, whose acne made the default
-//     scene's 15-45 wrong pixels (the block tower's receiver outlines) and
-//     most of wide-depth's (2.35% at 2048, now 0.027%).
+//     edge in any of the four texels: no occluder's silhouette crosses the
+//     footprint, the comparisons differ from the receiver's own outline or a
+//     crease alone: lit.
 //  2. Each texel's first edge in front gives its signed distance at the texel's
 //     centre; where all four agree in side with their own comparisons the
 //     bilinear interpolation decides (Sect. 3.1.1: exact for one straight
-//     edge). One texel that does not, or holds no edge in front, takes the
-//     plane through the other three (a straight edge's distance is linear),
-//     unless it is the texel nearest the sample (then step 3).
+//     edge), unless a texel holds a second line in front (two edges within a
+//     texel, Sect. 5.2). A texel that disagrees, or holds no edge in front,
+//     goes to step 3.
 //  3. Otherwise (Sect. 5.2: corners, edges closer than 2 texels) the thesis
 //     proposes testing each edge separately and combining the results, e.g.
 //     by a logical AND. Every line in front (up to 8) is evaluated exactly at
 //     the sample and at the four texel centres: inside all of them (AND: a
 //     convex corner, a strip) or inside any (OR: two occluders, a concave
-//     corner), whichever agrees with the footprint's four comparisons (one
-//     disagreeing texel allowed if it is not the nearest; AND first).
-//  4. Neither: each texel votes with its own first line at the sample (its
-//     comparison where it has none), bilinearly weighted.
+//     corner), whichever agrees with all four of the footprint's comparisons
+//     (AND first).
+//  4. Neither (Sect. 5.2: the reconstruction cannot decide): ssm's own test.
+// Wherever the edges cannot decide (a texel whose side disagrees with its
+// comparison, two lines in one texel, lines that explain the footprint only
+// with a miss), the answer is exactly ssm's: the same map
+// (ssm draws it with the same offset, shadow_map.cpp's kMapSlope) and the
+// same receiver-plane test of the nearest texel (depth_plane.frag), so the
+// edges only remove ssm's errors (tests/test_gl_edge_map_law.cpp).
 // Measured (geombench, 640x480, error_cast in % of the class; ssm 1.680 /
 // 0.630 / 0.204 on jenga at 512 / 1024 / 2048): the earlier one-edge lookup
 // (bilinear distance, plane for one odd texel, nearest comparison for two or
 // for a receiver not behind the edges) 0.355 / 0.138 / 0.034; two edges with
 // steps 1 and 3 only (no bilinear step, nearest comparison as the last
 // resort) 0.976 / 0.142 / 0.032; with step 2 0.320 at 512; the last resort
-// lit instead of nearest 0.240 / - / 0.006, the vote (step 4) 0.245 / 0.057 /
-// 0.006; the OR without the one-miss allowance 0.156 at 512 but scan's cast
+// lit instead of nearest 0.240 / - / 0.006, a bilinear vote of each texel's
+// own line (step 4) 0.245 / 0.057 / 0.006; the OR without the one-miss allowance 0.156 at 512 but scan's cast
 // error 0.0054% against ssm's 0.0008%; the nearest-texel conditions 0.164 /
 // 0.058 / 0.006; with the edge priority's depth weight 0.85 (edsm_edges.frag)
-// 0.120 / 0.055 / 0.006. Tried and not kept: a strip test for fully lit or
+// 0.120 / 0.055 / 0.006. (Those allowed one texel disagreeing with the
+// line, in step 2 taking the plane through the other three, and voted in
+// step 4; allowing them broke the law of never being worse than ssm on
+// random frames at maps of 40-96 texels.) Tried and not kept: a strip test for fully lit or
 // fully shadowed footprints (a thin occluder or gap between texel centres:
 // jenga 0.125 against 0.120); kInFront 1e-4 / 1e-5 / 0 (scan@2048
 // error_visible 0.028 / 0.011 / 0.003%, jenga the same; 2e-6 gives 0.005%).
 vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and its clip position
+mat4 face_matrix(int layer);
+vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradient);  // depth_plane.frag
+float nearest_lit(int layer, vec3 p, vec3 g);
 uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
-uniform usampler2DArray u_distance_map;     // RGBA32UI: (line, depth bits) x 2 per texel
+uniform usampler2DArray u_distance_map;  // RGBA32UI: (line, depth bits) x 2 per texel
 
 const float kPi = 3.14159265358979;
 const float kInFront = 2.0e-6;  // window depth: an edge this far in front of the receiver can shadow it
@@ -57,21 +67,21 @@ float shadow_visibility(vec3 world, vec3 normal) {
   vec3 p = c.xyz / c.w * 0.5 + 0.5;
   if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
   ivec2 size = textureSize(u_distance_map, 0).xy;
+  const vec3 slope = receiver_slope(face_matrix(layer), world, normal, vec2(size), vec3(0.0));
   vec2 tc = p.xy * vec2(size) - 0.5;
   ivec2 i = ivec2(floor(tc));
   vec2 f = tc - floor(tc);
   // The comparisons of the 2 x 2 footprint (gather order: (0,1) (1,1) (1,0) (0,0)).
   vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(layer)), p.z);
-  if (all(equal(g, vec4(g.x)))) return g.x;  // fully lit or fully shadowed
-  vec4 lit = vec4(g.w, g.z, g.x, g.y);       // footprint order (0,0) (1,0) (0,1) (1,1)
-  int kn = (f.x < 0.5 ? 0 : 1) + (f.y < 0.5 ? 0 : 2);  // the texel nearest the sample
+  const vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
+  if (all(equal(lit, vec4(lit.x)))) return lit.x;  // fully lit or fully shadowed
+  const float ssm = nearest_lit(layer, p, slope);           // ssm's test, where the edges cannot decide
   // The lines in front of the receiver, evaluated at the four texel centres
   // (offsets (0,0) (1,0) (0,1) (1,1) in texels) and at the sample (f).
   vec4 and_c = vec4(1.0e9), or_c = vec4(-1.0e9);
   float and_p = 1.0e9, or_p = -1.0e9;
-  float d[4];               // each texel's first line in front: its distance at the texel's centre
-  vec4 dp = vec4(1.0e9);    // and at the sample
-  int odd = -1, odd_count = 0, lines = 0;
+  float d[4];  // each texel's first line in front: its distance at the texel's centre
+  int odd_count = 0, lines = 0, pairs = 0;
   for (int k = 0; k < 4; ++k) {
     ivec2 o = ivec2(k & 1, k >> 1);
     uvec4 t = texelFetch(u_distance_map, ivec3(clamp(i + o, ivec2(0), size - 1), layer), 0);
@@ -87,14 +97,13 @@ float shadow_visibility(vec3 world, vec3 normal) {
       float at_p = dist + dot(n, f - origin);
       and_c = min(and_c, at_c), or_c = max(or_c, at_c);
       and_p = min(and_p, at_p), or_p = max(or_p, at_p);
-      if (d[k] == 1.0e9) d[k] = dist, dp[k] = at_p;
+      if (d[k] == 1.0e9) d[k] = dist; else ++pairs;
       ++lines;
     }
-    if (d[k] == 1.0e9 || (d[k] <= 0.0) != (lit[k] > 0.5)) odd = k, ++odd_count;
+    if (d[k] == 1.0e9 || (d[k] <= 0.0) != (lit[k] > 0.5)) ++odd_count;
   }
-  if (lines == 0) return 1.0;  // 1. no edge in front of the receiver
-  if (odd_count == 0 || (odd_count == 1 && odd != kn)) {  // 2. one straight edge
-    if (odd >= 0) d[odd] = d[odd ^ 1] + d[odd ^ 2] - d[odd ^ 3];
+  if (lines == 0) return 1.0;  // 1. no occluder's edge in front of the receiver
+  if (odd_count == 0 && pairs == 0) {  // 2. one straight edge
     float dist = mix(mix(d[0], d[1], f.x), mix(d[2], d[3], f.x), f.y);
     return dist > 0.0 ? 0.0 : 1.0;
   }
@@ -106,11 +115,8 @@ float shadow_visibility(vec3 world, vec3 normal) {
     and_miss += and_in[k] != shadowed[k] ? 1 : 0;
     or_miss += or_in[k] != shadowed[k] ? 1 : 0;
   }
-  if (and_miss <= or_miss && (and_miss == 0 || (and_miss == 1 && and_in[kn] == shadowed[kn])))
+  if (and_miss == 0)
     return and_p > 0.0 ? 0.0 : 1.0;
-  if (or_miss == 0 || (or_miss == 1 && or_in[kn] == shadowed[kn])) return or_p > 0.0 ? 0.0 : 1.0;
-  // 4. Each texel's vote: its first line in front at the sample, else its comparison.
-  vec4 v = mix(lit, vec4(lessThanEqual(dp, vec4(0.0))), vec4(lessThan(dp, vec4(1.0e8))));
-  float w = mix(mix(v.x, v.y, f.x), mix(v.z, v.w, f.x), f.y);
-  return w >= 0.5 ? 1.0 : 0.0;
+  if (or_miss == 0) return or_p > 0.0 ? 0.0 : 1.0;
+  return ssm;  // 4. the reconstruction cannot decide
 }

@@ -23,3 +23,5 @@ vec4 face_clip(vec3 world, out int layer) {
   }
   return u_face_matrix[layer] * vec4(world, 1.0);
 }
+
+mat4 face_matrix(int layer) { return u_face_matrix[layer]; }

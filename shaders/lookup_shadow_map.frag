@@ -1,6 +1,8 @@
 #version 450 core
-// Lookup of a 2D shadow map (ssm, pcf; the focused maps psm / lispsm / uniform
-// use lookup_focused.frag, whose depth is linear).
+// Lookup of one 2D shadow map in hardware, the plainest an engine can adopt
+// (examples/engine_sample.cpp, docs/library.md). The viewer's ssm and pcf use
+// lookup_shadow_faces.frag instead: one or six faces, each texel compared with
+// the receiver's plane at its centre (depth_plane.frag).
 // The map holds light-space depth written with a slope-scaled depth bias
 // (glPolygonOffset; Kenzel 2013, Sect. 1.2, Arneson, "Shadow mapping"), compared in hardware
 // (sampler2DShadow, GL_LEQUAL). u_pcf = 0: one nearest-texel comparison (simple

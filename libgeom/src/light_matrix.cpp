@@ -104,7 +104,10 @@ static LightKind kind_of(V4 l, V3 c, double r) {
   return l.w > 0 ? LightKind::Point : LightKind::InvertedPoint;
 }
 
-bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
+// PSM's post-perspective transform (Stamminger and Drettakis 2002, Sect. 4):
+// the camera's projection with its near plane pushed as far as the receivers
+// allow and the virtual camera shifted back until H lies beyond it.
+static M4 psm_post_perspective(const Frame& fr, const FocusOptions& opt, FocusResult& out) {
   // Depth ranges along the view axis: of H, and of the receivers R.
   double h_min = HUGE_VAL, h_max = -HUGE_VAL, r_min = HUGE_VAL, r_max = -HUGE_VAL;
   for (V3 p : fr.h_verts) {
@@ -143,8 +146,11 @@ bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& 
   proj.at(2, 2) = (f + n) / (n - f);
   proj.at(2, 3) = 2 * f * n / (n - f);
   proj.at(3, 2) = -1;
-  M4 post = proj * back * fr.view;
+  return proj * back * fr.view;
+}
 
+bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
+  const M4 post = psm_post_perspective(fr, opt, out);
   // H and the light in post-perspective space.
   thread_local std::vector<V3> hp;
   hp.clear();

@@ -36,7 +36,7 @@ bool esm_face(Frame& f, const glm::mat4& light_clip) {
 constexpr float kExactTexels = 4.0f, kReach = 2.0f;
 
 bool esm_exact_face(Frame& f, const glm::mat4& light_clip) {
-  GLuint p = edge_program(f, light_clip, kBias, GL_RG32F, {"esm_quad.vert", "esm_exact_edges.frag"});
+  GLuint p = edge_program(f, light_clip, kMapSlope, GL_RG32F, {"esm_quad.vert", "esm_exact_edges.frag"});
   if (!p) return false;
   set(p, "u_extrude_scale", 2.0f * kExactTexels / (float(f.n) * projection_scale(light_clip)));
   set(p, "u_planes", 2);

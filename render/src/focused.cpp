@@ -1,7 +1,8 @@
 // focused.cpp: the focused shadow maps psm (Stamminger and Drettakis 2002),
 // lispsm (Wimmer et al. 2004) and uniform: the light matrix of geom/focus.h
-// computed per frame for the map's x and y, and a linear light depth with its
-// own bias (shaders/light_depth.frag, depth_linear.frag, lookup_focused.frag).
+// computed per frame for the map's x and y, and a linear light depth with a
+// slope-scaled bias, its lookup testing the receiver's plane (shaders/light_depth.frag,
+// depth_linear.frag, lookup_focused_faces.frag, depth_plane.frag).
 // A point light among the receivers, or one whose receivers need a cone over
 // kMaxConeDeg, cannot be covered well by one map: geom/focus.h fits six faces
 // to it, each focused by the method as a spot light whose frustum is the
@@ -96,15 +97,15 @@ bool focused_passes(Frame& f) {
       f.face_clip[i] = face.empty ? glm::mat4(0.0f) : to_mat4(face.focused);
       if (!face.empty && first) f.light_frame.proj = f.face_clip[i], f.light_frame.view = glm::mat4(1), first = false;
     }
-    if (!depth_faces(f, 3.0f, true, true)) return false;  // bilinear lookup: 2 texels
+    if (!depth_faces(f, 6, 3.0f, true)) return false;
     f.lookup = "lookup_focused_faces.frag";
     f.projection = describe_faces(r);
     return true;
   }
   f.light_frame.proj = to_mat4(r.matrix), f.light_frame.view = glm::mat4(1);
-  if (!depth_map_pass(f, f.light_frame.clip(), 3.0f, true)) return false;  // bilinear lookup: 2 texels
-  finish_map(f);
-  f.lookup = "lookup_focused.frag";
+  f.face_clip[0] = f.light_frame.clip();
+  if (!depth_faces(f, 1, 3.0f, true)) return false;
+  f.lookup = "lookup_focused_faces.frag";
   f.projection = describe(method, r.method, r.fallback, r.psm_near, r.lispsm_n);
   return true;
 }

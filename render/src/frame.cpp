@@ -34,7 +34,8 @@ std::string missing_buffers(const State& s, const TechniqueRow& row, const Frame
 // The shared shading program: scene.vert + shade.frag + the technique's lookup shader.
 GLuint shading_program(Frame& f) {
   State& s = f.s;
-  std::vector<std::string> files = {"scene.vert", "shade.frag", f.lookup};
+  // depth_plane.frag: the receiver-plane test (unused by some lookups; linked with every one).
+  std::vector<std::string> files = {"scene.vert", "shade.frag", f.lookup, "depth_plane.frag"};
   const bool linear_depth = f.lookup.rfind("lookup_focused", 0) == 0;  // the focused maps' lookups
   if (linear_depth) files.push_back("light_depth.frag");               // their light_depth()
   if (f.faces) files.push_back("lookup_faces.frag");                   // 1 or 6 faces: face_clip()
@@ -56,6 +57,7 @@ GLuint shading_program(Frame& f) {
   set(p, "u_shadow_map", 0);
   set(p, "u_distance_map", 1);
   set(p, "u_edge_map", 1);
+  set(p, "u_depth_raw", 3);
   set(p, "u_pcf", f.t == Technique::Pcf ? 1 : 0);
   set(p, "u_esm_exact", f.t == Technique::EsmExact ? 1 : 0);
   if (f.faces) {
@@ -98,6 +100,8 @@ bool draw_frame(State& s, const View& view, const FrameLight& light, const Frame
   if (!p) return false;
   glBindTextureUnit(0, f.shadow_texture);
   glBindTextureUnit(1, f.second_texture);
+  glBindTextureUnit(3, f.faces ? f.shadow_texture : 0);  // the depth maps without comparison (depth_plane.frag)
+  glBindSampler(3, depth_sampler(s));
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   glViewport(0, 0, w, h);
   const float grey = 0.5f;  // mask: 128 where no geometry is
@@ -119,6 +123,8 @@ bool draw_frame(State& s, const View& view, const FrameLight& light, const Frame
   }
   glBindTextureUnit(0, 0);
   glBindTextureUnit(1, 0);
+  glBindTextureUnit(3, 0);
+  glBindSampler(3, 0);
   const geom::FocusMethod method = f.t == Technique::Lispsm    ? geom::FocusMethod::Lispsm
                                    : f.t == Technique::Uniform ? geom::FocusMethod::Uniform
                                                                : geom::FocusMethod::Psm;

@@ -1,8 +1,10 @@
 // shadow_map.cpp: ssm and pcf, and the depth map every map technique starts
-// from (esm, edsm, the focused maps): a depth map from the light with
-// slope-scaled bias (Kenzel 2013, Sect. 1.2; Arneson, glPolygonOffset); the
-// lookup and its PCF (3 x 3 bilinear comparison taps one texel apart) are
-// shaders/lookup_shadow_map.frag.
+// from (esm, edsm, the focused maps), drawn with a slope-scaled bias (Kenzel
+// 2013, Sect. 1.2; Arneson, glPolygonOffset). ssm, pcf, the focused maps, and
+// edsm and esm-exact where their edges cannot decide, compare it with the
+// receiver's plane at each texel's centre (shaders/depth_plane.frag; Dou et
+// al. 2014); the others compare in hardware at the sample's depth. ssm's and pcf's lookup (the nearest texel,
+// or 3 x 3 bilinear taps one texel apart) is shaders/lookup_shadow_faces.frag.
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -98,12 +100,15 @@ glm::vec2 light_depth_range(const State& s, const FrameLight& light) {
   return glm::vec2(float(lo), float(1.0 / (hi - lo)));
 }
 
-// `slope` is the bias factor: the depth slope of one texel covers a lookup at
-// the texel's own centre; a filter whose taps reach k texels away needs about
-// k + 1 of them. With `linear_light` (the focused maps, whose matrix warps
-// depth) the map stores the linear light depth of shaders/light_depth.frag with
-// the bias computed in it (depth_linear.frag); otherwise the matrix's own depth
-// with glPolygonOffset's bias.
+// `slope` is the slope-scaled bias factor (0: none): the depth slope of one
+// texel covers a lookup at the texel's own centre; a filter whose taps reach k
+// texels away needs about k + 1 of them. The lookups that test the receiver's
+// plane (shaders/depth_plane.frag) keep it for concave creases: there a
+// texel's centre falls on the other face, in front of the receiver's plane,
+// and the offset pushes that face back. With `linear_light` (the focused maps,
+// whose matrix warps depth) the map stores the linear light depth of
+// shaders/light_depth.frag with the bias computed in it (depth_linear.frag);
+// otherwise the matrix's own depth with glPolygonOffset's bias.
 bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool linear_light, const char* pass) {
   State& s = f.s;
   const int n = f.n;
@@ -116,7 +121,7 @@ bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool lin
     set(p, "u_light", local_light(s, f.light));
     set(p, "u_depth_range", light_depth_range(s, f.light));
     set(p, "u_bias_slope", slope);
-    set(p, "u_bias_constant", 1.0f / 65536.0f);  // about 3e-5 of the scene's diameter
+    set(p, "u_bias_constant", slope > 0 ? 1.0f / 65536.0f : 0.0f);  // about 3e-5 of the scene's diameter
   }
   f.timer.begin(pass);
   glBindFramebuffer(GL_FRAMEBUFFER, s.shadow_map.fbo);
@@ -125,7 +130,7 @@ bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool lin
   // Casters before the near plane still occlude (focused maps: the depth written
   // is linear; fitted frusta: their near plane is H's nearest point).
   glEnable(GL_DEPTH_CLAMP);
-  if (!linear_light) {
+  if (!linear_light && slope > 0) {
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(slope, 4.0f);  // slope-scaled depth bias (Kenzel 2013, Sect. 1.2; Arneson, glPolygonOffset)
   }
@@ -175,20 +180,17 @@ GLuint depth_sampler(State& s) {
   return s.depth_sampler;
 }
 
-// ssm: one depth map, nearest lookup; pcf: the same with 3 x 3 bilinear comparison taps.
-// The light frustum is fitted to what the camera sees (light_fit.cpp); a point
-// light that needs more than one frustum gets six faces, each its own depth
-// map (shaders/lookup_shadow_faces.frag), and the frame says so ("6 faces").
+// ssm: one depth map (offset kMapSlope), the nearest texel tested against the
+// receiver's plane; pcf: the same with 3 x 3 bilinear taps. The light frustum
+// is fitted to what the camera sees (light_fit.cpp); a point light that needs
+// more than one frustum gets six faces, each its own depth map, and the frame
+// says so ("6 faces"). Both are layers of one 2D array
+// (shaders/lookup_shadow_faces.frag).
 bool shadow_map_passes(Frame& f) {
-  const float slope = f.t == Technique::Pcf ? 3.5f : 1.5f;  // pcf: taps 1 texel away
-  if (fit_light_frames(f, face_guard()) == 6) {
-    if (!depth_faces(f, slope, false, f.t == Technique::Pcf)) return false;
-    f.lookup = "lookup_shadow_faces.frag";
-    return true;
-  }
-  if (!depth_map_pass(f, f.light_frame.clip(), slope, false)) return false;
-  finish_map(f);
-  f.lookup = "lookup_shadow_map.frag";
+  const int faces = fit_light_frames(f, face_guard());
+  if (faces == 1) f.face_clip[0] = f.light_frame.clip();
+  if (!depth_faces(f, faces, kMapSlope, false)) return false;
+  f.lookup = "lookup_shadow_faces.frag";
   return true;
 }
 

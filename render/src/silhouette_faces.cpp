@@ -4,7 +4,7 @@
 // (Bujnak 2004, Sect. 4: a point light as six maps) draw each face's depth map and
 // edge map with their own 2D passes and copy them into layer i of a 2D-array
 // depth texture and a 2D-array edge texture; ssm, pcf and the focused maps
-// draw six depth maps (depth_faces). The lookup (shaders/lookup_faces.frag)
+// draw one or six depth maps the same way (depth_faces). The lookup (shaders/lookup_faces.frag)
 // takes the face of the sample's largest axis.
 //
 // Seams: each 90-degree face is wider by a guard band of kGuard texels on
@@ -92,20 +92,19 @@ bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& lig
 
 float face_guard() { return kGuard; }
 
-bool depth_faces(Frame& f, float slope, bool linear_light, bool bilinear) {
+bool depth_faces(Frame& f, int faces, float slope, bool linear_light) {
   State& s = f.s;
-  ensure_arrays(s, f.n, 6, 0);
-  for (int i = 0; i < 6; ++i) {
+  ensure_arrays(s, f.n, faces, 0);
+  for (int i = 0; i < faces; ++i) {
     if (!drawn(f.face_clip[i])) continue;
     static const char* names[6] = {"depth map +X", "depth map -X", "depth map +Y",
                                    "depth map -Y", "depth map +Z", "depth map -Z"};
-    if (!depth_map_pass(f, f.face_clip[i], slope, linear_light, names[i])) return false;
+    if (!depth_map_pass(f, f.face_clip[i], slope, linear_light, faces == 1 ? "depth map" : names[i])) return false;
     copy_depth(s, f.n, i);
   }
-  const GLint filter = bilinear ? GL_LINEAR : GL_NEAREST;
-  glTextureParameteri(s.face_depth, GL_TEXTURE_MIN_FILTER, filter);
-  glTextureParameteri(s.face_depth, GL_TEXTURE_MAG_FILTER, filter);
-  f.faces = 6;
+  glTextureParameteri(s.face_depth, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(s.face_depth, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  f.faces = faces;
   f.shadow_texture = s.face_depth;
   return true;
 }

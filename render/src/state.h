@@ -158,8 +158,9 @@ float soft_reach(const Frame& f, float projection);
 
 // Shared by the map techniques (shadow_map.cpp).
 LightFrame light_frame(const State& s, const FrameLight& light);
-// The depth map from the light with slope-scaled bias into s.shadow_map
-// (`linear_light`: the linear light depth of the focused maps).
+// The depth map from the light into s.shadow_map, with a slope-scaled bias of
+// factor `slope` (0: none); `linear_light`: the linear light depth of the
+// focused maps, its bias computed in it.
 bool depth_map_pass(Frame& f, const glm::mat4& light_clip, float slope, bool linear_light,
                     const char* pass = "depth map");  // the timer's name of the pass
 // Sets the depth map's filter for the technique and makes it the shadow texture.
@@ -176,6 +177,12 @@ glm::vec2 light_depth_range(const State& s, const FrameLight& light);
 // point light among the receivers or needing a cone over kMaxConeDeg:
 // f.face_clip, the 90-degree faces with their fitted near and far, widened
 // by `guard` texels; an empty face's matrix is zero). Sets f.projection.
+// glPolygonOffset's factor of the depth maps that ssm, pcf, edsm and esm-exact
+// share: the edge passes need the offset to tell a silhouette from the surface
+// behind it, and with one map edsm's and esm-exact's fallback is exactly ssm's
+// test (edsm.cpp passes the same 2; with six faces their depth range is the
+// scene sphere's, silhouette_faces.cpp, and ssm's is fitted). The lookups add the receiver-plane test.
+constexpr float kMapSlope = 2.0f;
 constexpr double kMaxConeDeg = 120;  // full angle of the widest single frustum worth drawing
 int fit_light_frames(Frame& f, float guard);
 glm::mat4 to_mat4(const double m[16]);  // geom/focus.h's column-major doubles
@@ -184,9 +191,11 @@ glm::mat4 to_mat4(const double m[16]);  // geom/focus.h's column-major doubles
 // clip matrix into s.shadow_map / s.edge_map; the faces are gathered into
 // s.face_depth / s.face_edges (2D arrays), which become the frame's textures.
 bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& light_clip), GLenum edge_format);
-// The depth maps of the six faces f.face_clip (zero: skipped) into the layers
-// of s.face_depth, which becomes the shadow texture (bilinear or nearest).
-bool depth_faces(Frame& f, float slope, bool linear_light, bool bilinear);
+// The depth maps of the first `faces` (1 or 6) of f.face_clip (zero: skipped;
+// `slope` and `linear_light` as depth_map_pass) into the layers of
+// s.face_depth, which becomes the shadow texture; their lookups test the
+// receiver's plane (shaders/depth_plane.frag).
+bool depth_faces(Frame& f, int faces, float slope, bool linear_light);
 float face_guard();  // the guard band of the 90-degree faces, in texels
 // Clip x (or y, the smaller) per unit of length at w = 1 of a light's clip matrix.
 float projection_scale(const glm::mat4& clip);

@@ -258,17 +258,11 @@ std::vector<std::string> scene_names() {
 }
 std::vector<std::string> quick_scene_names() { return {"default", "pipes", "grazing"}; }
 
-bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
-  b = BenchScene();
-  b.name = name;
-  if (name == "default") {
-    const std::string path = std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf";
-    geom::ImportResult r = geom::import_file(path);
-    if (!r.ok) return error = r.error, false;
-    b.scene = std::move(r.scene);
-    b.light = geom::light_from_scene(b.scene.lights);
-    b.description = "data/default_scene.gltf, its own light";
-  } else if (name == "pipes") {
+namespace {
+
+// The procedural scenes; false when `name` is none of them.
+bool procedural_scene(const std::string& name, BenchScene& b) {
+  if (name == "pipes") {
     add_ground(b.scene, -4, 4, -3, 4);
     add_quad(b.scene, {-4, 0, -2}, {4, 0, -2}, {4, 4, -2}, {-4, 4, -2});
     add_pipe(b.scene, {-3, 0.5f, 0}, {3, 3.5f, -0.6f}, 0.12f, 24);
@@ -322,6 +316,21 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
     colonnade(b);
     b.light = point({1.5f, 6, 9});
     b.description = "200 m colonnade, point light behind and above the camera";
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// The scenes read from files (the bundled scene, the bunny, the Quake 3 map).
+bool file_scene(const std::string& name, BenchScene& b, std::string& error) {
+  if (name == "default") {
+    const std::string path = std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf";
+    geom::ImportResult r = geom::import_file(path);
+    if (!r.ok) return error = r.error, false;
+    b.scene = std::move(r.scene);
+    b.light = geom::light_from_scene(b.scene.lights);
+    b.description = "data/default_scene.gltf, its own light";
   } else if (name == "near-plane") {
     const std::string path = std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf";
     geom::ImportResult r = geom::import_file(path);
@@ -345,6 +354,14 @@ bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
     return error = "unknown scene '" + name + "'", false;
   }
   return true;
+}
+
+}  // namespace
+
+bool make_scene(const std::string& name, BenchScene& b, std::string& error) {
+  b = BenchScene();
+  b.name = name;
+  return procedural_scene(name, b) || file_scene(name, b, error);
 }
 
 }  // namespace geombench

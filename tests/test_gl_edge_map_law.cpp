@@ -1,0 +1,136 @@
+// The silhouette maps are never worse than the depth test they refine: where
+// edsm's or esm-exact's reconstruction cannot decide (fewer than two texels
+// around an edge, crossing edges, no edge data; Kenzel 2013, Sect. 5.2; Bujnak
+// 2004, Sect. 3.1) they fall back to ssm's own comparison, so on the same frame
+// and map size, against the ray-cast reference (geom/shadow_reference.h, as
+// geombench scores):
+//
+//   wrong(edsm), wrong(esm-exact) <= wrong(ssm) + 2 pixels
+//
+// on at least 97% of the cases (30 random frames per light type: point, spot,
+// directional; four map sizes, small ones included, where edges crowd within
+// two texels), and no more wrong pixels than ssm over all of them. The
+// remaining cases (up to 4 of 120 per light type, at every size) are where an
+// edge that passes the lookups' consistency tests still misplaces the
+// boundary by a texel, or edsm's footprint, compared at the sample's depth,
+// differs from ssm's receiver-plane test. The frames: a camera anywhere around and
+// above the bundled scene, near or far, looking at a random point of it; a sun anywhere above the horizon, a point
+// light and a spot anywhere over the scene (beside the camera, behind it, among the receivers). 160 x 120 images.
+#include "geom/import.h"
+#include "gl_fixtures.h"
+
+using namespace gltest;
+using render::Technique;
+
+namespace {
+
+constexpr int kFrames = 30;
+constexpr int kSizes[] = {40, 64, 96, 256};
+
+enum class Kind { Point, Spot, Directional };
+
+struct Tally {
+  int cases = 0, within[2] = {0, 0};  // edsm, esm-exact
+  size_t sum[3] = {0, 0, 0};          // ssm, edsm, esm-exact
+};
+
+size_t wrong_pixels(render::State& state, const geom::Camera& view, const geom::Light& light, Technique t, int size,
+                    const geom::ShadowReference& ref) {
+  render::FrameSettings fs;
+  fs.technique = t;
+  fs.output = render::Output::Mask;
+  fs.shadow_map_size = size;
+  geom::PngImage mask;
+  std::vector<render::PassTime> times;
+  std::string error;
+  EXPECT_TRUE(render::render(state, view, light, fs, mask, times, error)) << error;
+  if (const char* dir = std::getenv("GEOM_GL_TEST_DUMP")) {  // debugging aid: the mask and the reference
+    static int counter = 0;
+    const std::string base = std::string(dir) + "/" + std::to_string(counter++) + "_" + render::technique_name(t) +
+                             "_" + std::to_string(size);
+    geom::PngImage r = mask;
+    r.pixels = ref.mask;
+    geom::write_png(base + ".png", mask, error);
+    geom::write_png(base + "_ref.png", r, error);
+  }
+  return compare(mask, ref).wrong;
+}
+
+Tally run_frames(render::State& state, const geom::Scene& scene, Kind kind, uint32_t seed) {
+  float b[4];
+  render::scene_bounds(state, b);
+  const glm::vec3 c(b[0], b[1], b[2]);
+  const float r = b[3];
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1, 1), u01(0, 1);
+  Tally t;
+  for (int i = 0; i < kFrames; ++i) {
+    const glm::vec3 target = c + glm::vec3(u(rng), 0.3f * u(rng), u(rng)) * (0.7f * r);
+    glm::vec3 dir(u(rng), 0.1f + 0.9f * u01(rng), u(rng));
+    const glm::vec3 eye = target + glm::normalize(dir) * (r * (0.3f + 1.7f * u01(rng)));
+    const geom::Camera view = camera(eye, target, 30 + 40 * u01(rng), r * 0.01f, r * 100, 160, 120);
+    geom::Light light;
+    if (kind == Kind::Directional) {
+      light = sun(glm::vec3(u(rng), 0.05f + u01(rng), u(rng)));
+    } else {
+      const glm::vec3 p = c + glm::vec3(u(rng), 0.1f + u01(rng), u(rng)) * (1.5f * r);
+      if (kind == Kind::Point) {
+        light = point_light(p);
+      } else {
+        const glm::vec3 aim = c + glm::vec3(u(rng), 0, u(rng)) * (0.5f * r);
+        light = spot_light(p, aim - p, 20 + 40 * u01(rng));
+      }
+    }
+    const geom::ShadowReference ref =
+        geom::shadow_reference(geom::positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
+                               scene.indices.size(), view, light);
+    EXPECT_TRUE(ref.ok) << ref.error;
+    for (int size : kSizes) {
+      const Technique order[3] = {Technique::Ssm, Technique::Edsm, Technique::EsmExact};
+      size_t wrong[3];
+      for (int k = 0; k < 3; ++k) t.sum[k] += wrong[k] = wrong_pixels(state, view, light, order[k], size, ref);
+      ++t.cases;
+      for (int k = 1; k < 3; ++k) {
+        const bool ok = wrong[k] <= wrong[0] + 2;
+        t.within[k - 1] += ok;
+        if (!ok)
+          std::printf("frame %d, map %d: %s %zu wrong against ssm %zu (%s)\n", i, size,
+                      render::technique_name(order[k]), wrong[k], wrong[0], render::drawn_projection(state).c_str());
+      }
+    }
+  }
+  return t;
+}
+
+void check(const Tally& t, const char* what) {
+  std::printf(
+      "%s: %d cases; edsm within on %d, esm-exact on %d; wrong pixels in all: ssm %zu, edsm %zu, "
+      "esm-exact %zu\n",
+      what, t.cases, t.within[0], t.within[1], t.sum[0], t.sum[1], t.sum[2]);
+  EXPECT_EQ(kFrames * int(std::size(kSizes)), t.cases);
+  EXPECT_GE(t.within[0], int(0.97 * t.cases)) << what << ": edsm worse than ssm + 2 pixels on too many cases";
+  EXPECT_GE(t.within[1], int(0.97 * t.cases)) << what << ": esm-exact worse than ssm + 2 pixels on too many cases";
+  EXPECT_LE(t.sum[1], t.sum[0]) << what << ": edsm worse than ssm over all cases";
+  EXPECT_LE(t.sum[2], t.sum[0]) << what << ": esm-exact worse than ssm over all cases";
+}
+
+class GlEdgeMapLaw : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_NE(context(), nullptr);
+    geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
+    ASSERT_TRUE(imported.ok) << imported.error;
+    scene = imported.scene;
+    std::string error;
+    state = render::create_state(scene, GEOM_SHADER_DIR, error);
+    ASSERT_TRUE(state) << error;
+  }
+  geom::Scene scene;
+  render::StatePtr state;
+};
+
+TEST_F(GlEdgeMapLaw, PointLights) { check(run_frames(*state, scene, Kind::Point, 11), "point"); }
+TEST_F(GlEdgeMapLaw, SpotLights) { check(run_frames(*state, scene, Kind::Spot, 12), "spot"); }
+TEST_F(GlEdgeMapLaw, DirectionalLights) { check(run_frames(*state, scene, Kind::Directional, 13), "directional"); }
+
+}  // namespace
