@@ -35,6 +35,7 @@
 #include "geom/baked_writer.h"
 #include "geom/extrude.h"
 #include "geom/face_planes.h"
+#include "geom/focus.h"
 #include "geom/pipeline.h"
 #include "geom/report.h"
 #include "geom/shadow_volume.h"
@@ -270,8 +271,14 @@ TEST(BakedContainer, ClearErrors) {
   b[60] ^= 1;
   refused(b, "header checksum");
   b = bytes;
-  b[12] = 2;  // major version 2
-  refused(b, "unsupported version 2.0");
+  b[12] = 3;  // major version 3: newer than this reader's
+  refused(b, "unsupported version 3.0: the file is newer than this reader's version 2.0");
+  b = bytes;
+  b[12] = 1, b[14] = 7;  // version 1.7: older (the format before the light records and the caster hull)
+  refused(b, "unsupported version 1.7: the file is older than this reader's version 2.0");
+  b = bytes;
+  b[12] = 0;
+  refused(b, "unsupported version 0.0: the file is older");
   b = bytes;
   std::swap(b[8], b[11]);
   std::swap(b[9], b[10]);
@@ -518,6 +525,57 @@ void check_baked(const geom::Scene& scene, const geom::BakeOptions& options, con
   EXPECT_EQ(rd.find(SectionType::VolumePlanes) != nullptr, po.volume);
   EXPECT_EQ(rd.find(SectionType::AdjacencyIndices) != nullptr, po.adjacency);
   EXPECT_EQ(rd.find(SectionType::Lights) != nullptr, !lights.empty());
+  EXPECT_EQ(rd.find(SectionType::LightParams) != nullptr, !lights.empty());
+  EXPECT_EQ(rd.find(SectionType::LightNames) != nullptr, !lights.empty());
+  EXPECT_EQ(rd.find(SectionType::CasterHull) != nullptr, options.caster_hull != nullptr);
+  if (const auto* hull = rd.find(SectionType::CasterHull)) {
+    // The hull of the welded positions, as the focus computes it: every
+    // position inside every plane (within float rounding), unit normals.
+    std::vector<double> expected;
+    geom::focus_caster_hull(welded, expected);
+    EXPECT_EQ(hull->format, Format::F64x4);
+    EXPECT_TRUE(same(values<double>(hull), expected));
+    for (size_t i = 0; i + 3 < expected.size(); i += 4) {
+      EXPECT_NEAR(std::hypot(expected[i], expected[i + 1], expected[i + 2]), 1.0, 1e-9);
+      for (size_t v = 0; v < w.vertex_count(); ++v) {
+        const float* q = &w.positions[3 * v];
+        const double scale = 1 + std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]);
+        EXPECT_GE(expected[i] * q[0] + expected[i + 1] * q[1] + expected[i + 2] * q[2] + expected[i + 3], -1e-9 * scale)
+            << "position " << v << " outside hull plane " << i / 4;
+      }
+    }
+  }
+  if (const auto* params = rd.find(SectionType::LightParams)) {
+    // Each light whole, its name in light_names, fields of other types zero.
+    ASSERT_EQ(params->count, lights.size());
+    ASSERT_EQ(params->stride, sizeof(geom::LightRecord));
+    const auto* names = rd.find(SectionType::LightNames);
+    ASSERT_NE(names, nullptr);
+    std::string all_names;
+    for (size_t i = 0; i < lights.size(); ++i) {
+      geom::LightRecord l;
+      std::memcpy(&l, params->data + i * sizeof l, sizeof l);
+      const geom::Light& e = lights[i];
+      const size_t from_scene = lights.size() - options.lights.size();
+      const std::string name =
+          i >= from_scene && e.name.empty() ? "--light " + std::to_string(i - from_scene + 1) : e.name;
+      EXPECT_EQ(l.name_offset, all_names.size()) << "light " << i;
+      EXPECT_EQ(std::string(reinterpret_cast<const char*>(names->data) + l.name_offset, l.name_size), name);
+      all_names += name;
+      EXPECT_EQ(l.type, uint32_t(e.type));
+      EXPECT_EQ(l.reserved, 0u);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(l.position[k], e.type == geom::LightType::Directional ? 0 : e.position[k]);
+        EXPECT_EQ(l.direction[k], e.type == geom::LightType::Point ? 0 : e.direction[k]);
+        EXPECT_EQ(l.color[k], double(e.color[k]));
+      }
+      EXPECT_EQ(l.range, e.type == geom::LightType::Directional ? 0 : e.range);
+      EXPECT_EQ(l.inner_cone_angle, e.type == geom::LightType::Spot ? e.inner_cone : 0);
+      EXPECT_EQ(l.outer_cone_angle, e.type == geom::LightType::Spot ? e.outer_cone : 0);
+      EXPECT_EQ(l.intensity, double(e.intensity));
+    }
+    EXPECT_EQ(names->size, all_names.size());
+  }
   if (pos) {
     EXPECT_EQ(pos->format, Format::F32x3);
     EXPECT_TRUE(same(values<float>(pos), w.positions));
@@ -662,6 +720,7 @@ TEST(Bake, EveryFlagCombination) {
     o.pipeline.volume = mask & 64;
     o.pipeline.adjacency = mask & 128;
     o.scene_lights = mask & 256;
+    if (mask % 3 == 0) o.caster_hull = geom::focus_caster_hull;
     check_baked(s, o, "tetra");
     if (HasFatalFailure()) return;
   }
@@ -683,6 +742,34 @@ TEST(Bake, LightsGiven) {
   EXPECT_FALSE(geom::bake_scene(s, "tetra", o).ok);
 }
 
+// Scene lights of every type with random parameters (KHR_lights_punctual's
+// fields, names with UTF-8 and empty ones) beside `--light` ones: the
+// light_params and light_names sections hold each whole.
+TEST(Bake, LightsKeptWhole) {
+  std::mt19937 rng(27);
+  std::uniform_real_distribution<double> u(-10, 10), a(0, 1.5);
+  const std::vector<std::string> names = {"sun", "", "lampe \xc3\xa0 p\xc3\xa9trole", "spot.001", ""};
+  for (int trial = 0; trial < 40; ++trial) {
+    geom::Scene s = seamed_tetrahedron();
+    for (int i = 0; i < 1 + trial % 5; ++i) {
+      geom::Light l;
+      l.type = geom::LightType(rng() % 3);
+      l.name = names[size_t(rng() % names.size())];
+      for (int k = 0; k < 3; ++k) l.position[k] = u(rng), l.direction[k] = u(rng), l.color[k] = float(a(rng));
+      l.position[2] = 20 + std::fabs(l.position[2]);  // off the tetrahedron
+      l.range = rng() % 2 ? 0 : 5 + std::fabs(u(rng));
+      l.inner_cone = 0.5 * a(rng), l.outer_cone = l.inner_cone + 0.1;
+      l.intensity = float(100 * a(rng));
+      s.lights.push_back(l);
+    }
+    geom::BakeOptions o;
+    o.lights = lights_of({{1, 2, 30, 1}});
+    o.caster_hull = trial % 2 ? geom::focus_caster_hull : nullptr;
+    check_baked(s, o, "lights " + std::to_string(trial));
+    if (HasFatalFailure()) return;
+  }
+}
+
 TEST(Bake, RandomScenesRoundTrip) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 150; ++trial) {
@@ -690,6 +777,7 @@ TEST(Bake, RandomScenesRoundTrip) {
     geom::Scene s = random_scene(rng, offset);
     geom::BakeOptions o;
     if (trial % 5 == 0) o.pipeline.weld_tolerance = 0.3f;
+    if (trial % 2 == 0) o.caster_hull = geom::focus_caster_hull;
     check_baked(s, o, "random " + std::to_string(trial));
     if (HasFatalFailure()) return;
   }
@@ -857,13 +945,17 @@ TEST(BakeRealFile, DracoBoxGltf) {
 // importer's warnings with it; a name the caller gives is stored instead.
 TEST(BakeRealFile, LibraryBakeIsTheCliBake) {
   const std::string dir = temp_dir("libcli");
-  write_text(dir + "/warned.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nl 1 2\nf 1 2 3\nf 1 3 4\n");  // a line: a warning
-  const std::vector<std::string> inputs = {kBoxObj, kDracoBox, std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf",
-                                           dir + "/warned.obj"};
+  write_text(dir + "/warned.obj",
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nl 1 2\nf 1 2 3\nf 1 3 4\n");  // a line: a warning
+  const std::vector<std::string> inputs = {
+      kBoxObj, kDracoBox, std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf", dir + "/warned.obj"};
   for (size_t i = 0; i < inputs.size(); ++i) {
     SCOPED_TRACE(inputs[i]);
-    const std::string lib = dir + "/lib" + std::to_string(i) + ".gbake", cli = dir + "/cli" + std::to_string(i) + ".gbake";
-    const geom::BakeResult r = geom::bake_file(inputs[i], lib);
+    const std::string lib = dir + "/lib" + std::to_string(i) + ".gbake",
+                      cli = dir + "/cli" + std::to_string(i) + ".gbake";
+    geom::BakeOptions as_cli;  // geombake bake's defaults: the caster hull by geom::focus
+    as_cli.caster_hull = geom::focus_caster_hull;
+    const geom::BakeResult r = geom::bake_file(inputs[i], lib, as_cli);
     ASSERT_TRUE(r.ok) << r.error;
     EXPECT_EQ(r.report.file, geom::stored_name(inputs[i]));
     const CliRun run = geombake(dir, "bake -q '" + inputs[i] + "' -o '" + cli + "'");
@@ -1013,8 +1105,10 @@ TEST(GeombakeCli, Quake3MapFromArchive) {
   ASSERT_TRUE(imported.ok) << imported.error;
   geom::BakeOptions o;
   o.lights = lights_of({{0, 0, 1, 0}});
+  o.caster_hull = geom::focus_caster_hull;  // as geombake bakes
   check_baked(imported.scene, o, map);
-  geom::BakeResult baked = geom::bake_scene(imported.scene, "pak1-maps.pk3:maps/oa_bases3cl.bsp", o);  // the name stored
+  geom::BakeResult baked =
+      geom::bake_scene(imported.scene, "pak1-maps.pk3:maps/oa_bases3cl.bsp", o);  // the name stored
   ASSERT_TRUE(baked.ok) << baked.error;
   geom::baked::File f;
   ASSERT_TRUE(f.load(dir + "/out/oa_bases3cl.bsp.gbake")) << f.error();
@@ -1074,7 +1168,8 @@ std::vector<std::string> includes_of(const std::string& header) {
 // of it for files (no <filesystem>, no POSIX header: reading from memory needs
 // none); this file includes the reader first, so it is seen to compile alone.
 TEST(BakedReaderHeader, StandardLibraryOnly) {
-  const std::vector<std::string> allowed = {"<cmath>", "<cstddef>", "<cstdint>", "<cstdio>", "<cstring>", "<string>", "<vector>"};
+  const std::vector<std::string> allowed = {"<cmath>",   "<cstddef>", "<cstdint>", "<cstdio>",
+                                            "<cstring>", "<string>",  "<vector>"};
   for (const char* header : {"baked_reader.h", "baked_records.h"}) {
     const std::vector<std::string> included = includes_of(header);
     EXPECT_FALSE(included.empty()) << header;
@@ -1091,8 +1186,8 @@ TEST(BakedReaderHeader, FileReadingApart) {
   const size_t posix_block = src.find("#if defined(__unix__) || defined(__APPLE__)");
   const size_t posix_end = src.find("#else", posix_block);
   ASSERT_NE(posix_block, std::string::npos);
-  const std::vector<std::string> allowed = {"<cstdint>", "<cstdio>", "<cstring>", "<filesystem>",
-                                            "<string>",  "<vector>", "\"geom/baked_reader.h\""};
+  const std::vector<std::string> allowed = {
+      "<cstdint>", "<cstdio>", "<cstring>", "<filesystem>", "<string>", "<vector>", "\"geom/baked_reader.h\""};
   const std::vector<std::string> posix = {"<fcntl.h>", "<sys/mman.h>", "<sys/stat.h>", "<unistd.h>"};
   size_t includes = 0;
   for (size_t at = src.find("#include"); at != std::string::npos; at = src.find("#include", at + 1)) {

@@ -32,6 +32,7 @@ struct Scratch : testfs::Scratch {
 };
 
 bool finite3(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+bool finite3(const double* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
 // The plane table `records` index: same family, same item.
 const Section* planes_of(const File& f, SectionType planes, uint32_t item) { return f.reader().find(planes, item); }
@@ -111,6 +112,20 @@ void check_file(const std::string& path, uint64_t& records) {
           ASSERT_LT(r[i].plane & ~geom::SvCap::kDoubleSided, planes->count) << s.name << " " << i;
         }
         caps += s.count;
+        break;
+      }
+      case SectionType::LightParams: {
+        EXPECT_EQ(s.stride, sizeof(geom::LightRecord));
+        const geom::LightRecord* l = s.as<geom::LightRecord>();
+        const Section* names = f.reader().find(SectionType::LightNames);
+        const Section* table = f.reader().find(SectionType::Lights);
+        EXPECT_TRUE(l && names && table && table->count == s.count) << s.name;
+        if (!l || !names) break;
+        for (uint64_t i = 0; i < s.count; ++i) {
+          ASSERT_LE(l[i].type, geom::LightRecord::kSpot) << "light " << i;
+          ASSERT_LE(uint64_t(l[i].name_offset) + l[i].name_size, names->size) << "light " << i;
+          ASSERT_TRUE(finite3(l[i].position) && finite3(l[i].direction) && finite3(l[i].color)) << "light " << i;
+        }
         break;
       }
       default:

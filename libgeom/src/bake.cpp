@@ -9,6 +9,7 @@
 #include <cstring>
 #include <memory>
 #include <new>
+#include <stdexcept>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -22,6 +23,27 @@ namespace {
 
 using baked::Format;
 using baked::SectionType;
+
+// A light as the light_params section holds it (geom/baked_records.h): the
+// fields its type has, the others zero; its name at `name_offset` of light_names.
+LightRecord light_record(const Light& l, uint32_t name_offset) {
+  LightRecord r{};
+  r.type = l.type == LightType::Directional ? LightRecord::kDirectional
+           : l.type == LightType::Point     ? LightRecord::kPoint
+                                            : LightRecord::kSpot;
+  r.name_offset = name_offset;
+  r.name_size = uint32_t(l.name.size());
+  for (int k = 0; k < 3; ++k) {
+    r.position[k] = l.type == LightType::Directional ? 0 : l.position[k];
+    r.direction[k] = l.type == LightType::Point ? 0 : l.direction[k];
+    r.color[k] = l.color[k];
+  }
+  r.range = l.type == LightType::Directional ? 0 : l.range;
+  r.inner_cone_angle = l.type == LightType::Spot ? l.inner_cone : 0;
+  r.outer_cone_angle = l.type == LightType::Spot ? l.outer_cone : 0;
+  r.intensity = l.intensity;
+  return r;
+}
 
 // Per triangle of [t0, t1), its stored plane in input coordinates, d = d_local - n . origin
 // ((0, 0, 0, 0) for none), 4 floats each at `out`.
@@ -289,10 +311,10 @@ class Baker {
   }
 
   void expect_sections() {
-    const size_t n = size_t(options_.positions) + options_.indices + options_.weld_remap + asked_.face_planes +
-                     options_.topology_report +
+    const size_t n = size_t(options_.positions) + options_.indices + options_.weld_remap +
+                     (options_.caster_hull != nullptr) + asked_.face_planes + options_.topology_report +
                      (more_ ? size_t(framed_) + 2 * asked_.esm + 3 * asked_.volume + asked_.adjacency +
-                                  !lights_.empty() + 3 * lights_.size() + 1
+                                  3 * !lights_.empty() + 3 * lights_.size() + 1
                             : 0);
     if (!out_->expect(n)) throw WriteFailed();
   }
@@ -360,6 +382,11 @@ class Baker {
       emit(view_section(SectionType::Positions, Format::F32x3, 12, "positions", w.positions, kept_));
     if (options_.indices) emit(view_section(SectionType::Indices, Format::U32, 4, "indices", w.indices, kept_));
     if (options_.weld_remap) emit(view_section(SectionType::WeldRemap, Format::U32, 4, "weld_remap", w.remap, kept_));
+    if (options_.caster_hull) {  // empty when the positions span no volume
+      std::vector<double> planes;
+      if (!options_.caster_hull(positions_of(w.positions.data(), w.positions.size() / 3), planes)) planes.clear();
+      emit(make_baked_section(SectionType::CasterHull, Format::F64x4, 32, "caster_hull", planes));
+    }
     if (out_) free_vector(p.weld.remap);  // no stage reads it
     return Step::Next;
   }
@@ -453,9 +480,19 @@ class Baker {
     return Step::Next;
   }
 
-  // lights.
+  // lights, light_params, light_names.
   Step light_table() {
-    if (!lights_.empty()) emit(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table_));
+    if (lights_.empty()) return Step::Next;
+    emit(make_baked_section(SectionType::Lights, Format::F64x4, 32, "lights", table_));
+    std::vector<LightRecord> records(lights_.size());
+    std::vector<char> names;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      records[i] = light_record(lights_[i], uint32_t(names.size()));
+      names.insert(names.end(), lights_[i].name.begin(), lights_[i].name.end());
+      if (names.size() > UINT32_MAX) throw std::length_error("the lights' names are over 4 GiB");
+    }
+    emit(make_baked_section(SectionType::LightParams, Format::Record, sizeof(LightRecord), "light_params", records));
+    emit(make_baked_section(SectionType::LightNames, Format::Utf8, 1, "light_names", names));
     return Step::Next;
   }
 

@@ -93,6 +93,89 @@ static void empty_focus(Frame& fr, const Light& light, FocusResult& out) {
   fr.light_axis = axis_before;
 }
 
+// The light's kind in the real camera's post-perspective space (Sect. 3).
+static LightKind post_perspective_kind(const Frame& fr) {
+  if (!fr.perspective) return fr.directional ? LightKind::Directional : LightKind::Point;
+  double w = fr.directional ? dot(fr.towards_light, fr.view_dir) : depth_of(fr, fr.light_pos);
+  double size = fr.directional ? 1.0 : length(fr.light_pos - fr.eye) + fr.scale;
+  return std::fabs(w) <= 1e-9 * size ? LightKind::Directional : w > 0 ? LightKind::Point : LightKind::InvertedPoint;
+}
+
+// R = V n S n L (n receiver bounds) into fr.receivers and its vertices into
+// fr.r_verts; a point or spot light's near plane placed with it.
+static void receiver_region(Frame& fr, const Light& light, const FocusOptions& options, FocusResult& out) {
+  V3 corners[8];
+  if (view_frustum(fr, corners)) {
+    view_and_box(fr, corners, fr.box);
+    if (fr.s_hull) {  // S's body cut by V's faces (v_planes before the receiver bounds)
+      fr.receivers = fr.s_body;
+      clip_polytope(fr.receivers, fr.v_planes.data(), fr.v_planes.size() - fr.r_planes.size(), fr.eps, fr.scratch);
+    } else {
+      frustum_polytope(corners, fr.receivers);
+      clip_polytope(fr.receivers, fr.s_planes.data(), fr.s_planes.size(), fr.eps, fr.scratch);
+    }
+    clip_polytope(fr.receivers, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
+    clip_polytope(fr.receivers, fr.r_planes.data(), fr.r_planes.size(), fr.eps, fr.scratch);
+  } else {
+    fr.receivers.clear();
+  }
+  // A point light's cube faces start from R before L's near plane cuts it.
+  fr.all_receivers = fr.receivers;
+  fr.range_planes = fr.l_planes.size();
+  if (!fr.directional && !fr.receivers.empty()) near_plane_cut(fr, light, options, out);
+  unique_vertices(fr.receivers, fr.eps, fr.r_verts);
+}
+
+// H = conv(R u {l}) n S n L into fr.body (empty when R is).
+static void focus_body(Frame& fr, StageTimes* times) {
+  if (fr.receivers.empty()) {
+    fr.body.clear();
+    return;
+  }
+  double reach = -HUGE_VAL;
+  if (fr.directional)
+    for (int i = 0; i < 8; ++i) reach = std::fmax(reach, dot(fr.box[i], fr.towards_light));
+  std::vector<Plane>& clip = fr.hull_clip;
+  clip.assign(fr.s_planes.begin(), fr.s_planes.end());
+  clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
+  const V3 light = fr.directional ? fr.towards_light : fr.light_pos;
+  const V3 axis = fr.directional ? fr.towards_light : fr.light_axis;
+  // With S's body as the start, only L's planes are left to clip by.
+  const size_t skip = fr.s_hull ? fr.s_planes.size() : 0;
+  if (!focus_by_planes(fr.r_verts, light, fr.directional, axis, fr.v_planes.data(), fr.v_planes.size(),
+                       clip.data() + skip, clip.size() - skip, fr.box, fr.eps, fr.hull_clip_planes, fr.body, fr.scratch,
+                       times, fr.s_hull ? &fr.s_body : nullptr))
+    focus_hull(fr.receivers, light, fr.directional, reach, clip.data(), clip.size(), fr.eps, fr.hull_points, fr.body,
+               fr.scratch, times);
+}
+
+// H for the caller (its faces, or its vertices alone), fr.h_verts its extreme
+// points, and for a point or spot light the map's near plane: H's nearest
+// point (at the floor H was cut there: casters next to the light, or
+// receivers, and the result says so) and the cone H needs from the light.
+static void body_output(Frame& fr, const FocusOptions& options, FocusResult& out) {
+  if (options.faces) {
+    index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
+  } else {
+    for (V3 p : fr.h_verts) out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
+  }
+  if (options.faces && out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
+    fr.h_verts.clear();
+    for (size_t i = 0; i + 2 < out.vertices.size(); i += 3)
+      fr.h_verts.push_back(V3(out.vertices[i], out.vertices[i + 1], out.vertices[i + 2]));
+  }
+  if (fr.directional) return;
+  for (int k = 0; k < 3; ++k) out.light_axis[k] = fr.light_axis[k];
+  double nearest = HUGE_VAL;
+  for (V3 p : fr.h_verts) {
+    V3 d = p - fr.light_pos;
+    nearest = std::fmin(nearest, dot(d, fr.light_axis));
+    if (length(d) > fr.eps) fr.cone_cos = std::fmin(fr.cone_cos, dot(d, fr.light_axis) / length(d));
+  }
+  out.light_near = std::fmax(nearest, fr.light_near);
+  if (nearest <= fr.light_near + 4 * fr.eps) out.near_floor_cut = true;
+}
+
 // The single-frustum computation (H, the light's kind, the matrix) into `out`,
 // which compute_focus has reset. False for invalid input.
 static bool single_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene,
@@ -111,90 +194,22 @@ static bool single_focus(const CameraMatrices& camera, const Light& light, const
     out.fallback = FocusFallback::InvalidInput;
     return false;
   }
-  // The light's kind in the real camera's post-perspective space (Sect. 3).
-  if (fr.perspective) {
-    double w = fr.directional ? dot(fr.towards_light, fr.view_dir) : depth_of(fr, fr.light_pos);
-    double size = fr.directional ? 1.0 : length(fr.light_pos - fr.eye) + fr.scale;
-    out.light_kind = std::fabs(w) <= 1e-9 * size ? LightKind::Directional
-                     : w > 0                     ? LightKind::Point
-                                                 : LightKind::InvertedPoint;
-  } else {
-    out.light_kind = fr.directional ? LightKind::Directional : LightKind::Point;
-  }
-  out.psm_light_kind = out.light_kind;
+  out.light_kind = out.psm_light_kind = post_perspective_kind(fr);
   lap(&StageTimes::setup);
-
-  // R = V n S n L (n receiver bounds).
-  V3 corners[8];
-  bool visible = view_frustum(fr, corners);
-  if (visible) {
-    frustum_polytope(corners, fr.receivers);
-    clip_polytope(fr.receivers, fr.s_planes.data(), fr.s_planes.size(), fr.eps, fr.scratch);
-    clip_polytope(fr.receivers, fr.l_planes.data(), fr.l_planes.size(), fr.eps, fr.scratch);
-    clip_polytope(fr.receivers, fr.r_planes.data(), fr.r_planes.size(), fr.eps, fr.scratch);
-    view_and_box(fr, corners, fr.box);
-  } else {
-    fr.receivers.clear();
-  }
-  // A point light's cube faces start from R before L's near plane cuts it.
-  fr.all_receivers = fr.receivers;
-  fr.range_planes = fr.l_planes.size();
-  if (!fr.directional && !fr.receivers.empty()) near_plane_cut(fr, light, options, out);
-  unique_vertices(fr.receivers, fr.eps, fr.r_verts);
+  receiver_region(fr, light, options, out);
   lap(&StageTimes::receivers);
-  // H = conv(R u {l}) n S n L.
-  if (!fr.receivers.empty()) {
-    double reach = -HUGE_VAL;
-    if (fr.directional)
-      for (int i = 0; i < 8; ++i) reach = std::fmax(reach, dot(fr.box[i], fr.towards_light));
-    std::vector<Plane>& clip = fr.hull_clip;
-    clip.assign(fr.s_planes.begin(), fr.s_planes.end());
-    clip.insert(clip.end(), fr.l_planes.begin(), fr.l_planes.end());
-    V3 axis = fr.directional ? fr.towards_light : fr.light_axis;
-    if (!focus_by_planes(fr.r_verts, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, axis,
-                         fr.v_planes.data(), fr.v_planes.size(), clip.data(), clip.size(), fr.box, fr.eps,
-                         fr.hull_clip_planes, fr.body, fr.scratch, times))
-      focus_hull(fr.receivers, fr.directional ? fr.towards_light : fr.light_pos, fr.directional, reach, clip.data(),
-                 clip.size(), fr.eps, fr.hull_points, fr.body, fr.scratch, times);
-  } else {
-    fr.body.clear();
-  }
-  if (times) mark = Clock::now();  // focus_hull timed itself
+  focus_body(fr, times);
+  if (times) mark = Clock::now();  // focus_body timed itself
   unique_vertices(fr.body, fr.eps, fr.h_verts);
   fr.cone_cos = 1;
   if (fr.h_verts.empty() || fr.r_verts.empty()) {
     empty_focus(fr, light, out);
     return true;
   }
-  if (options.faces) {
-    index_polytope(fr.body, fr.eps, out.vertices, out.face_sizes, out.face_indices);
-  } else {
-    for (V3 p : fr.h_verts) out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
-  }
-  if (options.faces && out.vertices.size() >= 12) {  // the hull's vertices: extreme points only
-    fr.h_verts.clear();
-    for (size_t i = 0; i + 2 < out.vertices.size(); i += 3)
-      fr.h_verts.push_back(V3(out.vertices[i], out.vertices[i + 1], out.vertices[i + 2]));
-  }
-  if (!fr.directional) {
-    for (int k = 0; k < 3; ++k) out.light_axis[k] = fr.light_axis[k];
-    // The map's near plane: H's nearest point. At the floor, H was cut there
-    // (casters next to the light, or receivers): say so. The cone H needs
-    // from the light: the cosine of its widest ray.
-    double nearest = HUGE_VAL;
-    for (V3 p : fr.h_verts) {
-      V3 d = p - fr.light_pos;
-      nearest = std::fmin(nearest, dot(d, fr.light_axis));
-      if (length(d) > fr.eps) fr.cone_cos = std::fmin(fr.cone_cos, dot(d, fr.light_axis) / length(d));
-    }
-    out.light_near = std::fmax(nearest, fr.light_near);
-    if (nearest <= fr.light_near + 4 * fr.eps) out.near_floor_cut = true;
-  }
+  body_output(fr, options, out);
   lap(&StageTimes::faces);
-
   M4 m;
-  bool done = method_matrix(fr, options, out, m);
-  if (done) std::copy(m.m, m.m + 16, out.matrix);
+  if (method_matrix(fr, options, out, m)) std::copy(m.m, m.m + 16, out.matrix);
   lap(&StageTimes::matrix);
   return true;
 }

@@ -44,7 +44,34 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 
-// CGAL's quickhull into a Surface_mesh, read back as points and triangles.
+// The hull in an order that depends on its points alone: vertices sorted
+// (x, then y, then z), each triangle starting at its least vertex (its
+// orientation kept), triangles sorted. CGAL's output order follows where its
+// internal structures lie in memory, so two calls on the same points could
+// list them differently, and the planes and faces made from them would
+// differ in order and in the last bits.
+static void canonical_order(std::vector<Point>& verts, std::vector<std::array<size_t, 3>>& tris) {
+  thread_local std::vector<size_t> order, rank;
+  thread_local std::vector<Point> sorted;
+  order.resize(verts.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const Point &p = verts[a], &q = verts[b];
+    return p.x() != q.x() ? p.x() < q.x() : p.y() != q.y() ? p.y() < q.y() : p.z() < q.z();
+  });
+  rank.resize(verts.size());
+  sorted.clear();
+  for (size_t i = 0; i < order.size(); ++i) rank[order[i]] = i, sorted.push_back(verts[order[i]]);
+  verts.swap(sorted);
+  for (auto& t : tris) {
+    for (size_t& v : t) v = rank[v];
+    while (t[0] > t[1] || t[0] > t[2]) t = {t[1], t[2], t[0]};
+  }
+  std::sort(tris.begin(), tris.end());
+}
+
+// CGAL's quickhull into a Surface_mesh, read back as points and triangles
+// (canonical_order).
 // (CGAL 5.5's indexed-triangle-set output of convex_hull_3 can return a
 // triangle turned inside out where several points are coplanar; the
 // Surface_mesh output is consistent.)
@@ -75,6 +102,7 @@ static bool cgal_hull(const std::vector<Point>& in, std::vector<Point>& verts,
     if (k != 3) return false;
     tris.push_back(t);
   }
+  canonical_order(verts, tris);
   return true;
 }
 
@@ -134,7 +162,8 @@ void frustum_polytope(const V3 c[8], Polytope& out) {
   }
 }
 
-// Sorts `pts[first..]` counter-clockwise around `normal` (seen from where it points).
+// Sorts `pts[first..]` counter-clockwise around `normal` (seen from where it
+// points), by each point's angle around their centroid, computed once.
 static void sort_around(std::vector<V3>& pts, size_t first, V3 normal) {
   size_t n = pts.size() - first;
   V3 c(0, 0, 0);
@@ -142,24 +171,30 @@ static void sort_around(std::vector<V3>& pts, size_t first, V3 normal) {
   c = c * (1.0 / double(n));
   V3 u = any_perpendicular(normalize(normal));
   V3 v = cross(normalize(normal), u);
-  std::sort(pts.begin() + long(first), pts.end(), [&](V3 a, V3 b) {
-    return std::atan2(dot(a - c, v), dot(a - c, u)) < std::atan2(dot(b - c, v), dot(b - c, u));
-  });
+  thread_local std::vector<std::pair<double, V3>> keyed;
+  keyed.clear();
+  for (size_t i = first; i < pts.size(); ++i)
+    keyed.push_back({std::atan2(dot(pts[i] - c, v), dot(pts[i] - c, u)), pts[i]});
+  std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (size_t i = 0; i < n; ++i) pts[first + i] = keyed[i].second;
 }
 
 static bool near_point(V3 a, V3 b, double eps) { return max_abs(a - b) <= eps; }
 
-void clip_polytope(Polytope& p, const Plane& h, double eps, Polytope& scratch) {
+// clip_polytope of one plane; false when nothing was cut (p unchanged).
+static bool clip_one(Polytope& p, const Plane& h, double eps, Polytope& scratch) {
   bool any_out = false, any_in = false;
-  for (V3 q : p.pts) {
-    double d = h.eval(q);
+  thread_local std::vector<double> dist;  // each point's signed distance, computed once
+  dist.resize(p.pts.size());
+  for (size_t i = 0; i < p.pts.size(); ++i) {
+    const double d = dist[i] = h.eval(p.pts[i]);
     if (d < -eps) any_out = true;
     if (d > eps) any_in = true;
   }
-  if (!any_out) return;  // nothing to cut
-  if (!any_in) {         // everything outside or on the plane: no volume left
+  if (!any_out) return false;  // nothing to cut
+  if (!any_in) {               // everything outside or on the plane: no volume left
     p.clear();
-    return;
+    return true;
   }
   scratch.clear();
   thread_local std::vector<V3> cap;
@@ -168,8 +203,9 @@ void clip_polytope(Polytope& p, const Plane& h, double eps, Polytope& scratch) {
   for (uint32_t n : p.sizes) {
     size_t start = scratch.pts.size();
     for (uint32_t i = 0; i < n; ++i) {
-      V3 a = p.pts[base + i], b = p.pts[base + (i + 1) % n];
-      double da = h.eval(a), db = h.eval(b);
+      const size_t ia = base + i, ib = base + (i + 1) % n;
+      V3 a = p.pts[ia], b = p.pts[ib];
+      double da = dist[ia], db = dist[ib];
       if (da >= -eps) scratch.pts.push_back(a);
       if (std::fabs(da) <= eps) cap.push_back(a);
       if ((da < -eps && db > eps) || (da > eps && db < -eps)) {
@@ -200,10 +236,36 @@ void clip_polytope(Polytope& p, const Plane& h, double eps, Polytope& scratch) {
   }
   std::swap(p.pts, scratch.pts);
   std::swap(p.sizes, scratch.sizes);
+  return true;
 }
 
+void clip_polytope(Polytope& p, const Plane& h, double eps, Polytope& scratch) { clip_one(p, h, eps, scratch); }
+
+// The planes in turn; a plane that holds the polytope's bounding box inside,
+// by more than eps plus the rounding of its distances, cannot cut (every
+// point's distance is above -eps): it is passed over without visiting the
+// points, the result the same as clip_one's.
 void clip_polytope(Polytope& p, const Plane* planes, size_t count, double eps, Polytope& scratch) {
-  for (size_t i = 0; i < count && !p.empty(); ++i) clip_polytope(p, planes[i], eps, scratch);
+  V3 lo, hi;
+  double size = 0;
+  bool boxed = false;
+  for (size_t i = 0; i < count && !p.empty(); ++i) {
+    const Plane& h = planes[i];
+    if (!boxed) {
+      lo = hi = p.pts[0];
+      for (V3 q : p.pts) {  // finite points: plain comparisons (no library call)
+        lo.x = q.x < lo.x ? q.x : lo.x, lo.y = q.y < lo.y ? q.y : lo.y, lo.z = q.z < lo.z ? q.z : lo.z;
+        hi.x = q.x > hi.x ? q.x : hi.x, hi.y = q.y > hi.y ? q.y : hi.y, hi.z = q.z > hi.z ? q.z : hi.z;
+      }
+      size = max_of(max_abs(lo), max_abs(hi));
+      boxed = true;
+    }
+    const double low = h.d + (h.n.x >= 0 ? h.n.x * lo.x : h.n.x * hi.x) + (h.n.y >= 0 ? h.n.y * lo.y : h.n.y * hi.y) +
+                       (h.n.z >= 0 ? h.n.z * lo.z : h.n.z * hi.z);
+    const double rounding = 1e-9 * (std::fabs(h.d) + (std::fabs(h.n.x) + std::fabs(h.n.y) + std::fabs(h.n.z)) * size);
+    if (low - rounding > eps) continue;
+    if (clip_one(p, h, eps, scratch)) boxed = false;
+  }
 }
 
 bool hull_polytope(const V3* points, size_t count, Polytope& out) {
@@ -230,12 +292,23 @@ bool hull_polytope(const V3* points, size_t count, Polytope& out) {
   return !out.empty();
 }
 
+// A point is a duplicate when a point already kept lies within eps of it in
+// every coordinate (near_point). The kept points are also listed by x, so
+// only those whose x lies near enough are compared (the window is widened by
+// more than x's rounding): the answer of comparing with every kept point.
 void unique_vertices(const Polytope& p, double eps, std::vector<V3>& out) {
   out.clear();
+  thread_local std::vector<std::pair<double, uint32_t>> by_x;
+  by_x.clear();
   for (V3 q : p.pts) {
+    const double slack = 2 * eps + 1e-12 * std::fabs(q.x);
+    auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(q.x - slack, uint32_t(0)));
     bool dup = false;
-    for (size_t i = 0; i < out.size() && !dup; ++i) dup = near_point(out[i], q, eps);
-    if (!dup) out.push_back(q);
+    for (; it != by_x.end() && it->first <= q.x + slack && !dup; ++it) dup = near_point(out[it->second], q, eps);
+    if (dup) continue;
+    by_x.insert(std::upper_bound(by_x.begin(), by_x.end(), std::make_pair(q.x, uint32_t(out.size()))),
+                std::make_pair(q.x, uint32_t(out.size())));
+    out.push_back(q);
   }
 }
 
@@ -288,6 +361,134 @@ static bool index_clipped(const Polytope& p, double eps, std::vector<double>& xy
   return true;
 }
 
+// Union-find over the hull's triangles: adjacent triangles coplanar within the
+// tolerance share a root, a region's plane being that of its largest triangle
+// (the root), so a sliver along an edge cannot chain the two faces it touches
+// into one. `edges` are the directed edges (a, b, triangle), sorted.
+struct CoplanarRegions {
+  const std::vector<Point>* verts_ = nullptr;
+  const std::vector<std::array<size_t, 3>>* tris_ = nullptr;
+  std::vector<std::array<uint32_t, 3>> edges;
+  std::vector<Plane> planes;
+  std::vector<double> area;
+  std::vector<uint32_t> parent;
+
+  const std::vector<std::array<size_t, 3>>& tris() const { return *tris_; }
+  V3 at(size_t i) const {
+    const Point& q = (*verts_)[i];
+    return V3(q.x(), q.y(), q.z());
+  }
+  uint32_t find(uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  // The triangle of the directed edge (b, a), or -1.
+  int64_t twin_of(uint32_t a, uint32_t b) const {
+    auto it = std::lower_bound(edges.begin(), edges.end(), std::array<uint32_t, 3>{b, a, 0});
+    return it != edges.end() && (*it)[0] == b && (*it)[1] == a ? int64_t((*it)[2]) : -1;
+  }
+
+  void merge(double eps) {
+    const size_t nt = tris().size();
+    planes.resize(nt);
+    area.resize(nt);
+    parent.resize(nt);
+    for (size_t i = 0; i < nt; ++i) {
+      V3 a = at(tris()[i][0]), b = at(tris()[i][1]), c = at(tris()[i][2]);
+      V3 n = cross(b - a, c - a);
+      area[i] = length(n);
+      planes[i] = plane_through(a, normalize(n));
+      parent[i] = uint32_t(i);
+    }
+    edges.clear();
+    for (size_t i = 0; i < nt; ++i)
+      for (size_t k = 0; k < 3; ++k)
+        edges.push_back({uint32_t(tris()[i][k]), uint32_t(tris()[i][(k + 1) % 3]), uint32_t(i)});
+    std::sort(edges.begin(), edges.end());
+    for (const auto& e : edges) {
+      int64_t t = twin_of(e[0], e[1]);
+      if (t < 0) continue;
+      uint32_t ri = find(e[2]), rj = find(uint32_t(t));
+      if (ri == rj) continue;
+      uint32_t big = area[ri] >= area[rj] ? ri : rj, small = big == ri ? rj : ri;
+      uint32_t edge_tri = small == ri ? e[2] : uint32_t(t);
+      // (No normal test: a sliver's normal is noise; the distances decide.)
+      bool flat = true;
+      for (size_t k = 0; k < 3 && flat; ++k)
+        flat = std::fabs(planes[big].eval(at(tris()[small][k]))) <= 8 * eps &&
+               std::fabs(planes[big].eval(at(tris()[edge_tri][k]))) <= 8 * eps;
+      if (flat) parent[small] = big;
+    }
+  }
+
+  // Each region as one face, its boundary loop (its directed edges whose twin
+  // lies in another region), or its triangles where the boundary is not one
+  // simple loop (the tolerance merged a ring).
+  void faces(std::vector<uint32_t>& sizes, std::vector<uint32_t>& indices) {
+    thread_local std::vector<std::array<uint32_t, 3>> boundary;  // (region, a, b)
+    boundary.clear();
+    for (const auto& e : edges) {
+      int64_t t = twin_of(e[0], e[1]);
+      uint32_t r = find(e[2]);
+      if (t < 0 || find(uint32_t(t)) != r) boundary.push_back({r, e[0], e[1]});
+    }
+    std::sort(boundary.begin(), boundary.end());
+    for (size_t i = 0, j = 0; i < boundary.size(); i = j) {
+      while (j < boundary.size() && boundary[j][0] == boundary[i][0]) ++j;
+      if (walk_loop(boundary, i, j, indices)) {
+        sizes.push_back(uint32_t(j - i));
+        continue;
+      }
+      for (size_t t = 0; t < tris().size(); ++t)
+        if (find(uint32_t(t)) == boundary[i][0]) {
+          for (size_t k = 0; k < 3; ++k) indices.push_back(uint32_t(tris()[t][k]));
+          sizes.push_back(3);
+        }
+    }
+  }
+
+  // The loop of boundary edges [i, j) from the region's first edge (the next
+  // edge starts where this one ends) appended to `indices`; false (nothing
+  // appended) when they are not one simple loop.
+  static bool walk_loop(const std::vector<std::array<uint32_t, 3>>& boundary, size_t i, size_t j,
+                        std::vector<uint32_t>& indices) {
+    const size_t count = j - i, start = indices.size();
+    const uint32_t first = boundary[i][1];
+    uint32_t v = first;
+    bool ok = true;
+    for (size_t step = 0; step < count && ok; ++step) {
+      indices.push_back(v);
+      size_t k = i;
+      while (k < j && boundary[k][1] != v) ++k;
+      if (k == j)
+        ok = false;
+      else
+        v = boundary[k][2];
+      if (ok && v == first && step + 1 != count) ok = false;  // several loops: not a disk
+    }
+    if (ok && v == first) return true;
+    indices.resize(start);
+    return false;
+  }
+};
+
+// A vertex inside a merged face (a hair off its plane) is no corner: drops
+// the vertices no face uses, so the output is exactly the faces' corners.
+static void drop_unused(size_t vertex_count, std::vector<double>& xyz, std::vector<uint32_t>& indices) {
+  thread_local std::vector<uint32_t> renumber;
+  renumber.assign(vertex_count, UINT32_MAX);
+  for (uint32_t v : indices) renumber[v] = 0;
+  size_t kept = 0;
+  for (size_t v = 0; v < vertex_count; ++v)
+    if (renumber[v] == 0) {
+      renumber[v] = uint32_t(kept);
+      for (int k = 0; k < 3; ++k) xyz[3 * kept + k] = xyz[3 * v + k];
+      ++kept;
+    }
+  xyz.resize(3 * kept);
+  for (uint32_t& v : indices) v = renumber[v];
+}
+
 void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std::vector<uint32_t>& sizes,
                     std::vector<uint32_t>& indices) {
   xyz.clear();
@@ -313,114 +514,15 @@ void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std
   } catch (const std::exception&) {
     return;
   }
-  for (const Point& q : verts) {
-    xyz.push_back(q.x());
-    xyz.push_back(q.y());
-    xyz.push_back(q.z());
-  }
-  auto at = [&](size_t i) { return V3(verts[i].x(), verts[i].y(), verts[i].z()); };
+  for (const Point& q : verts) xyz.insert(xyz.end(), {q.x(), q.y(), q.z()});
   // Adjacent triangles that are coplanar within the tolerance merge into one
-  // face (union-find over shared edges), and each face is the boundary loop of
-  // its triangles: the topology stays CGAL's closed surface whatever the
-  // tolerance decides (V - E + F = 2 holds).
-  const size_t nt = tris.size();
-  thread_local std::vector<Plane> planes;
-  thread_local std::vector<double> area;
-  thread_local std::vector<uint32_t> parent;
-  planes.resize(nt);
-  area.resize(nt);
-  parent.resize(nt);
-  for (size_t i = 0; i < nt; ++i) {
-    V3 a = at(tris[i][0]), b = at(tris[i][1]), c = at(tris[i][2]);
-    V3 n = cross(b - a, c - a);
-    area[i] = length(n);
-    planes[i] = plane_through(a, normalize(n));
-    parent[i] = uint32_t(i);
-  }
-  auto find = [&](uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  // Directed edges (a, b, triangle), sorted to find each edge's twin.
-  thread_local std::vector<std::array<uint32_t, 3>> edges;
-  edges.clear();
-  for (size_t i = 0; i < nt; ++i)
-    for (size_t k = 0; k < 3; ++k) edges.push_back({uint32_t(tris[i][k]), uint32_t(tris[i][(k + 1) % 3]), uint32_t(i)});
-  std::sort(edges.begin(), edges.end());
-  auto twin_of = [&](uint32_t a, uint32_t b) -> int64_t {
-    auto it = std::lower_bound(edges.begin(), edges.end(), std::array<uint32_t, 3>{b, a, 0});
-    return it != edges.end() && (*it)[0] == b && (*it)[1] == a ? int64_t((*it)[2]) : -1;
-  };
-  // A region's plane is that of its largest triangle (the root), so a sliver
-  // along an edge cannot chain the two faces it touches into one.
-  for (const auto& e : edges) {
-    int64_t t = twin_of(e[0], e[1]);
-    if (t < 0) continue;
-    uint32_t ri = find(e[2]), rj = find(uint32_t(t));
-    if (ri == rj) continue;
-    uint32_t big = area[ri] >= area[rj] ? ri : rj, small = big == ri ? rj : ri;
-    uint32_t edge_tri = small == ri ? e[2] : uint32_t(t);
-    // (No normal test: a sliver's normal is noise; the distances decide.)
-    bool flat = true;
-    for (size_t k = 0; k < 3 && flat; ++k)
-      flat = std::fabs(planes[big].eval(at(tris[small][k]))) <= 8 * eps &&
-             std::fabs(planes[big].eval(at(tris[edge_tri][k]))) <= 8 * eps;
-    if (flat) parent[small] = big;
-  }
-  // Each region's boundary: its directed edges whose twin lies in another region.
-  thread_local std::vector<std::array<uint32_t, 3>> boundary;  // (a, b, region)
-  boundary.clear();
-  for (const auto& e : edges) {
-    int64_t t = twin_of(e[0], e[1]);
-    uint32_t r = find(e[2]);
-    if (t < 0 || find(uint32_t(t)) != r) boundary.push_back({r, e[0], e[1]});
-  }
-  std::sort(boundary.begin(), boundary.end());
-  size_t i = 0;
-  while (i < boundary.size()) {
-    size_t j = i;
-    while (j < boundary.size() && boundary[j][0] == boundary[i][0]) ++j;
-    // Walk the loop from the region's first edge: next edge starts where this one ends.
-    size_t count = j - i, start = indices.size();
-    uint32_t first = boundary[i][1], v = first;
-    bool ok = true;
-    for (size_t step = 0; step < count && ok; ++step) {
-      indices.push_back(v);
-      size_t k = i;
-      while (k < j && boundary[k][1] != v) ++k;
-      if (k == j)
-        ok = false;
-      else
-        v = boundary[k][2];
-      if (ok && v == first && step + 1 != count) ok = false;  // several loops: not a disk
-    }
-    if (!ok || v != first) {
-      // Not one simple loop (tolerance merged a ring): emit the region's triangles.
-      indices.resize(start);
-      for (size_t t = 0; t < nt; ++t)
-        if (find(uint32_t(t)) == boundary[i][0]) {
-          for (size_t k = 0; k < 3; ++k) indices.push_back(uint32_t(tris[t][k]));
-          sizes.push_back(3);
-        }
-    } else {
-      sizes.push_back(uint32_t(count));
-    }
-    i = j;
-  }
-  // A vertex inside a merged face (a hair off its plane) is no corner: drop
-  // the vertices no face uses, so the output is exactly the faces' corners.
-  thread_local std::vector<uint32_t> renumber;
-  renumber.assign(verts.size(), UINT32_MAX);
-  for (uint32_t v : indices) renumber[v] = 0;
-  size_t kept = 0;
-  for (size_t v = 0; v < verts.size(); ++v)
-    if (renumber[v] == 0) {
-      renumber[v] = uint32_t(kept);
-      for (int k = 0; k < 3; ++k) xyz[3 * kept + k] = xyz[3 * v + k];
-      ++kept;
-    }
-  xyz.resize(3 * kept);
-  for (uint32_t& v : indices) v = renumber[v];
+  // face, and each face is the boundary loop of its triangles: the topology
+  // stays CGAL's closed surface whatever the tolerance decides (V - E + F = 2).
+  thread_local CoplanarRegions r;  // working memory, per thread
+  r.verts_ = &verts, r.tris_ = &tris;
+  r.merge(eps);
+  r.faces(sizes, indices);
+  drop_unused(verts.size(), xyz, indices);
 }
 
 bool hull_planes(PositionSpan points, std::vector<Plane>& out) {
@@ -435,14 +537,54 @@ bool hull_planes(PositionSpan points, std::vector<Plane>& out) {
   }
   Polytope hull;
   if (!hull_polytope(pts.data(), pts.size(), hull)) return false;
+  // Each face's plane (inside is n.x + d >= 0) and area.
+  thread_local std::vector<std::pair<double, Plane>> faces;
+  faces.clear();
   for (size_t t = 0; t < hull.sizes.size(); ++t) {
     V3 a = hull.pts[3 * t], b = hull.pts[3 * t + 1], c = hull.pts[3 * t + 2];
-    V3 n = normalize(cross(b - a, c - a));
-    if (length(n) == 0) continue;
-    out.push_back(plane_through(a, -n));  // outward n: inside is -n.x + d >= 0
+    V3 n = cross(b - a, c - a);
+    if (!(length(n) > 0)) continue;
+    faces.push_back({length(n), plane_through(a, -normalize(n))});  // outward n: inside is -n.x + d >= 0
+  }
+  // The largest faces first (ties by the plane, so the order is the points'
+  // alone); a face whose direction a chosen plane already has adds nothing.
+  std::sort(faces.begin(), faces.end(), [](const auto& x, const auto& y) {
+    if (x.first != y.first) return x.first > y.first;
+    const Plane &p = x.second, &q = y.second;
+    return p.n.x != q.n.x ? p.n.x < q.n.x : p.n.y != q.n.y ? p.n.y < q.n.y : p.n.z != q.n.z ? p.n.z < q.n.z : p.d < q.d;
+  });
+  for (const auto& f : faces) {
+    if (out.size() == kMaxHullPlanes) break;
+    bool known = false;
+    for (const Plane& p : out) known = known || dot(p.n, f.second.n) > 1 - 1e-12;
+    if (!known) out.push_back(f.second);
+  }
+  // Each plane moved to support the hull: every vertex inside, in the
+  // arithmetic the clips use (a face's own plane moves by rounding at most).
+  for (Plane& p : out) {
+    double lowest = HUGE_VAL;
+    for (V3 q : hull.pts) lowest = std::fmin(lowest, dot(p.n, q));
+    p.d = -lowest;
   }
   return out.size() >= 4;
 }
+
+}  // namespace focus
+
+bool focus_caster_hull(PositionSpan casters, std::vector<double>& planes) {
+  planes.clear();
+  try {
+    std::vector<focus::Plane> hull;
+    if (!focus::hull_planes(casters, hull)) return false;
+    for (const focus::Plane& p : hull) planes.insert(planes.end(), {p.n.x, p.n.y, p.n.z, p.d});
+    return true;
+  } catch (...) {  // allocation failure: never past the library boundary
+    planes.clear();
+    return false;
+  }
+}
+
+namespace focus {
 
 void focus_hull(const Polytope& receivers, V3 light, bool directional, double reach, const Plane* clip,
                 size_t clip_count, double eps, std::vector<V3>& hull_points, Polytope& out, Polytope& scratch,
@@ -484,7 +626,8 @@ namespace focus {
 
 bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
                      size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
-                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times) {
+                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times,
+                     const Polytope* start) {
   using Clock = std::chrono::steady_clock;
   Clock::time_point t0 = times ? Clock::now() : Clock::time_point();
   out.clear();
@@ -537,7 +680,10 @@ bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional,
     planes.push_back(p);
   }
   planes.insert(planes.end(), k_planes, k_planes + k_count);
-  frustum_polytope(box, out);
+  if (start)
+    out = *start;
+  else
+    frustum_polytope(box, out);
   Clock::time_point t1 = times ? Clock::now() : Clock::time_point();
   clip_polytope(out, planes.data(), planes.size(), eps, scratch);
   if (times) {

@@ -49,7 +49,12 @@ void index_polytope(const Polytope& p, double eps, std::vector<double>& xyz, std
                     std::vector<uint32_t>& indices);
 
 // The half-spaces of the convex hull of `points` (outward faces become
-// inside-positive planes). False when the points span no volume.
+// inside-positive planes): the planes of its kMaxHullPlanes largest faces (of
+// distinct directions), each moved to support the hull, so their
+// intersection holds every point and is the hull itself when it has no more
+// faces. Bounded so that clipping a frame's bodies by them stays cheap. In an
+// order that depends on the points alone. False when they span no volume.
+constexpr size_t kMaxHullPlanes = 16;
 bool hull_planes(PositionSpan points, std::vector<Plane>& out);
 
 // H = conv(R u {l}) n S n L, with R the receiver region (already clipped by S,
@@ -71,9 +76,13 @@ void focus_hull(const Polytope& receivers, V3 light, bool directional, double re
 // projected from the light along `axis` (point: every vertex lies at least a
 // positive distance along it; directional: axis is the light direction).
 // False when the silhouette has no area (the caller falls back to focus_hull).
+// `start` (may be null): a convex body inside the box holding K's part that
+// `k_planes` then need not repeat (S cut by the casters' hull, made once per
+// frame), clipped in the box's place.
 bool focus_by_planes(const std::vector<V3>& r_verts, V3 light, bool directional, V3 axis, const Plane* r_planes,
                      size_t r_count, const Plane* k_planes, size_t k_count, const V3 box[8], double eps,
-                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times = nullptr);
+                     std::vector<Plane>& planes, Polytope& out, Polytope& scratch, StageTimes* times = nullptr,
+                     const Polytope* start = nullptr);
 
 }  // namespace focus
 }  // namespace geom

@@ -25,8 +25,8 @@ static void box_planes(const double* lo, const double* hi, std::vector<Plane>& o
   }
 }
 
-bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const FocusOptions& opt, Frame& fr,
-           FocusResult& out) {
+// The camera: view and projection checked, near and far, eye and view direction.
+static bool camera_setup(const CameraMatrices& cam, Frame& fr, FocusResult& out) {
   fr.view = M4::from(cam.view);
   fr.proj = M4::from(cam.projection);
   if (!finite(fr.view) || !finite(fr.proj) || !invert(fr.view, fr.view_inv)) {
@@ -59,8 +59,11 @@ bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const Fo
   V4 e = mul(fr.view_inv, 0, 0, 0, 1), v = mul(fr.view_inv, 0, 0, -1, 0);
   fr.eye = V3(e.x, e.y, e.z);
   fr.view_dir = normalize(V3(v.x, v.y, v.z));
+  return true;
+}
 
-  fr.directional = light.type == LightType::Directional;
+// The light, the scene bounds and the options: finite and in range.
+static bool inputs_valid(const Light& light, const FocusBox& box, const FocusOptions& opt, FocusResult& out) {
   if (!finite3(light.position) || !finite3(light.direction) || !std::isfinite(light.range) || light.range < 0 ||
       !std::isfinite(opt.light_near) || opt.light_near < 0 || !std::isfinite(light.outer_cone) ||
       (light.type == LightType::Spot && !(light.outer_cone > 0)) ||
@@ -83,8 +86,12 @@ bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const Fo
     out.reason = "the receiver bounds are not finite";
     return false;
   }
+  return true;
+}
 
-  // Scene bounds: swapped axes put right, zero extents inflated.
+// Scene bounds: swapped axes put right, zero extents inflated; the frame's
+// scale and tolerance. Returns the box's diagonal.
+static double scene_bounds(FocusBox& box, const Light& light, Frame& fr, FocusResult& out) {
   double ext = 0, mac = max_abs(fr.eye);
   bool swapped = false;
   for (int k = 0; k < 3; ++k) {
@@ -111,17 +118,61 @@ bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const Fo
   fr.eps = 1e-12 * mac + 1e-9 * ext;
   double diag = 0;
   for (int k = 0; k < 3; ++k) diag += (box.max[k] - box.min[k]) * (box.max[k] - box.min[k]);
-  diag = std::sqrt(diag);
+  return std::sqrt(diag);
+}
 
+// S as a body: the box cut by the hull's planes (s_planes after the box's
+// six). Static casters give the same planes frame after frame: the body of
+// the last planes and tolerance is kept per thread and reused while they are
+// equal, value for value (the same body the clips would make again).
+static void s_body(Frame& fr) {
+  thread_local std::vector<Plane> planes;
+  thread_local double eps = -1;
+  thread_local Polytope body;
+  const auto same = [&](const Plane& a, const Plane& b) {
+    return a.n.x == b.n.x && a.n.y == b.n.y && a.n.z == b.n.z && a.d == b.d;
+  };
+  if (eps == fr.eps && planes.size() == fr.s_planes.size() &&
+      std::equal(planes.begin(), planes.end(), fr.s_planes.begin(), same)) {
+    fr.s_body = body;
+    return;
+  }
+  V3 corners[8];
+  scene_corners(fr, corners);
+  frustum_polytope(corners, fr.s_body);
+  clip_polytope(fr.s_body, fr.s_planes.data() + 6, fr.s_planes.size() - 6, fr.eps, fr.scratch);
+  planes = fr.s_planes;
+  eps = fr.eps;
+  body = fr.s_body;
+}
+
+// S: the box's planes, then the casters' hull (precomputed, or from the
+// points); the receiver bounds' planes. False for a non-finite hull plane.
+static bool scene_planes(const FocusBox& box, const FocusOptions& opt, Frame& fr, FocusResult& out) {
   fr.s_planes.clear();
   box_planes(box.min, box.max, fr.s_planes);
-  if (opt.casters.size() > 0) {
+  fr.s_hull = false;
+  if (opt.caster_hull.size() > 0) {
+    for (size_t i = 0; i < opt.caster_hull.size(); ++i) {
+      const FocusPlane& h = opt.caster_hull[i];
+      Plane q{V3(h.n[0], h.n[1], h.n[2]), h.d};
+      if (!finite(q.n) || !std::isfinite(q.d) || !(length(q.n) > 0)) {
+        out.reason = "a caster hull plane is not finite or has no normal";
+        return false;
+      }
+      fr.s_planes.push_back(q);
+    }
+  } else if (opt.casters.size() > 0) {
     thread_local std::vector<Plane> hull;
     if (hull_planes(opt.casters, hull))
       fr.s_planes.insert(fr.s_planes.end(), hull.begin(), hull.end());
     else
       set_fallback(out, FocusFallback::DegenerateScene,
                    "the casters span no volume (or hold a non-finite point): the scene box alone is S");
+  }
+  if (fr.s_planes.size() > 6) {
+    s_body(fr);
+    fr.s_hull = true;
   }
   fr.r_planes.clear();
   if (opt.receivers) {
@@ -130,29 +181,42 @@ bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const Fo
       if (rb.min[k] > rb.max[k]) std::swap(rb.min[k], rb.max[k]);
     box_planes(rb.min, rb.max, fr.r_planes);
   }
+  return true;
+}
 
-  // Light frustum L (the near half-space of a point light is added later).
+// Light frustum L (the near half-space of a point light is added later).
+static void light_frustum(const Light& light, const FocusOptions& opt, double diag, Frame& fr) {
   fr.l_planes.clear();
   fr.light_pos = V3(light.position);
   fr.light_near = opt.light_near > 0 ? opt.light_near : 1e-3 * diag;
   if (fr.directional) {
     fr.towards_light = -normalize(V3(light.direction));
-  } else {
-    if (light.range > 0) {
-      double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) lo[k] = fr.light_pos[k] - light.range, hi[k] = fr.light_pos[k] + light.range;
-      box_planes(lo, hi, fr.l_planes);
-    }
-    if (light.type == LightType::Spot) {
-      V3 axis = normalize(V3(light.direction));
-      fr.light_axis = axis;
-      double angle = std::fmin(light.outer_cone, 89.9 * kPi / 180);
-      double s = std::sin(angle), c = std::cos(angle);
-      V3 b1 = any_perpendicular(axis), b2 = cross(axis, b1);
-      for (V3 side : {b1, -b1, b2, -b2}) fr.l_planes.push_back(plane_through(fr.light_pos, axis * s - side * c));
-      // L's near plane comes with the receivers (near_plane_cut), where its floor is known.
-    }
+    return;
   }
+  if (light.range > 0) {
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = fr.light_pos[k] - light.range, hi[k] = fr.light_pos[k] + light.range;
+    box_planes(lo, hi, fr.l_planes);
+  }
+  if (light.type == LightType::Spot) {
+    V3 axis = normalize(V3(light.direction));
+    fr.light_axis = axis;
+    double angle = std::fmin(light.outer_cone, 89.9 * kPi / 180);
+    double s = std::sin(angle), c = std::cos(angle);
+    V3 b1 = any_perpendicular(axis), b2 = cross(axis, b1);
+    for (V3 side : {b1, -b1, b2, -b2}) fr.l_planes.push_back(plane_through(fr.light_pos, axis * s - side * c));
+    // L's near plane comes with the receivers (near_plane_cut), where its floor is known.
+  }
+}
+
+bool setup(const CameraMatrices& cam, const Light& light, FocusBox box, const FocusOptions& opt, Frame& fr,
+           FocusResult& out) {
+  if (!camera_setup(cam, fr, out)) return false;
+  fr.directional = light.type == LightType::Directional;
+  if (!inputs_valid(light, box, opt, out)) return false;
+  const double diag = scene_bounds(box, light, fr, out);
+  if (!scene_planes(box, opt, fr, out)) return false;
+  light_frustum(light, opt, diag, fr);
   return true;
 }
 

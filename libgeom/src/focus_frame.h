@@ -29,6 +29,10 @@ struct Frame {
   // bodies
   std::vector<Plane> s_planes, l_planes, r_planes, hull_clip, v_planes, hull_clip_planes;
   Polytope receivers, body, scratch;
+  // With a casters' hull: S as a body (the box cut by the hull's planes, once
+  // per frame), which R and H start from instead of clipping by S's planes.
+  bool s_hull = false;
+  Polytope s_body;
   std::vector<V3> r_verts, h_verts, hull_points;
   double eps = 0, scale = 1;
   V3 box[8];                // S's corners in frustum_polytope's order

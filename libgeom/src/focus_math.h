@@ -20,7 +20,11 @@ using vec3::dot;
 using vec3::length;
 inline V3 normalize(V3 a) { return vec3::normalize_or(a, V3(0, 0, 0)); }
 inline bool finite(V3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
-inline double max_abs(V3 a) { return std::fmax(std::fabs(a.x), std::fmax(std::fabs(a.y), std::fabs(a.z))); }
+// std::fmax's answer (a NaN argument ignored) without its library call, which
+// the compiler does not inline under the project's strict floating point:
+// the vertex merges of every clip call it.
+inline double max_of(double a, double b) { return a < b || a != a ? b : a; }
+inline double max_abs(V3 a) { return max_of(std::fabs(a.x), max_of(std::fabs(a.y), std::fabs(a.z))); }
 // A unit vector perpendicular to unit n.
 inline V3 any_perpendicular(V3 n) {
   V3 t = std::fabs(n.x) < 0.6 ? V3(1, 0, 0) : std::fabs(n.y) < 0.6 ? V3(0, 1, 0) : V3(0, 0, 1);

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "cli/args.h"
+#include "geom/focus.h"
 #include "geom/version.h"
 #include "geombake/flags.h"
 #include "geombake/inputs.h"
@@ -79,6 +80,7 @@ bool parse_bake_options(const cli::Args& args, const SharedFlags& shared, geom::
   options.pipeline.adjacency = !args.has("--no-adjacency");
   options.pipeline.volume_options.one_sided_closed = args.has("--one-sided-closed");
   options.scene_lights = !args.has("--no-scene-lights");
+  if (!args.has("--no-caster-hull")) options.caster_hull = geom::focus_caster_hull;  // the caster_hull section
   for (const std::string& text : args.all("--light")) {
     float l[4];
     if (!cli::parse_floats(text, 4, l) || !std::isfinite(l[0]) || !std::isfinite(l[1]) || !std::isfinite(l[2]) ||
@@ -133,9 +135,26 @@ int parse_bake_flags(const std::vector<std::string>& argv, const char* help, Bak
   constexpr unsigned kShared = kImportFlags | kPipelineFlags | kLimitFlags;
   cli::Args args(
       split_jobs_flag(argv),
-      with_shared_flags({"--json", "-v", "--help", "-h", "--no-positions", "--no-indices", "--no-remap", "--no-planes",
-                         "--no-topology", "--no-esm", "--no-volume", "--no-adjacency", "--no-scene-lights",
-                         "--one-sided-closed", "-q", "--quiet", "--force", "--prune", "--stable-report"},
+      with_shared_flags({"--json",
+                         "-v",
+                         "--help",
+                         "-h",
+                         "--no-positions",
+                         "--no-indices",
+                         "--no-remap",
+                         "--no-caster-hull",
+                         "--no-planes",
+                         "--no-topology",
+                         "--no-esm",
+                         "--no-volume",
+                         "--no-adjacency",
+                         "--no-scene-lights",
+                         "--one-sided-closed",
+                         "-q",
+                         "--quiet",
+                         "--force",
+                         "--prune",
+                         "--stable-report"},
                         kShared, false),
       with_shared_flags({"-o", "-j", "--depfile", "--depfile-target", "--light", "--list", "-r", "--progress"}, kShared,
                         true));

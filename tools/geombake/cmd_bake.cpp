@@ -55,6 +55,7 @@ const char* kBakeHelp =
     "  --no-positions      omit the welded positions\n"
     "  --no-indices        omit the welded index buffer\n"
     "  --no-remap          omit the weld remap (source vertex -> welded vertex)\n"
+    "  --no-caster-hull    omit the casters' convex hull (the focus's per-frame input)\n"
     "  --no-planes         omit the face planes\n"
     "  --no-topology       omit the topology report\n"
     "  --no-esm            omit the extended-shadow-map quads\n"

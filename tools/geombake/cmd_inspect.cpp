@@ -4,12 +4,14 @@
 // the exit status 1.
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli/args.h"
 #include "geom/baked_file.h"
 #include "geom/baked_reader.h"
+#include "geom/baked_records.h"
 #include "geombake/command.h"
 #include "geombake/names.h"
 
@@ -21,7 +23,7 @@ const char* kInspectHelp =
     "  Verifies each baked file (header, section table, alignment, padding, checksums)\n"
     "  and lists its sections.\n"
     "options:\n"
-    "  --json   one JSON object per file, one per line\n"
+    "  --json   one JSON object per file, one per line (with the lights, glTF's names)\n"
     "  -v       also print the topology report section (control characters escaped)\n";
 
 std::string type_label(const geom::baked::Section& s) {
@@ -53,6 +55,42 @@ void print_text(const unsigned char* data, uint64_t size) {
     if (chunk.size() >= (1 << 16) - 8) std::fwrite(chunk.data(), 1, chunk.size(), stdout), chunk.clear();
   }
   std::fwrite(chunk.data(), 1, chunk.size(), stdout);
+}
+
+// The lights of light_params and light_names as `--json` lists them: glTF's
+// names (KHR_lights_punctual), null where the light's type has no such field
+// (a directional light's position and range, a point light's direction and
+// cone angles; an infinite range). Empty without a light_params section.
+nlohmann::ordered_json lights_json(const geom::baked::Reader& r) {
+  using geom::LightRecord;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  const geom::baked::Section* params = r.find(geom::baked::SectionType::LightParams);
+  const geom::baked::Section* names = r.find(geom::baked::SectionType::LightNames);
+  if (!params || params->stride != sizeof(LightRecord)) return list;
+  const auto vec3 = [](const double* v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); };
+  for (uint64_t i = 0; i < params->count; ++i) {
+    LightRecord l;
+    std::memcpy(&l, params->data + i * sizeof l, sizeof l);
+    std::string name;
+    if (names && l.name_offset <= names->size && l.name_size <= names->size - l.name_offset)
+      name.assign(reinterpret_cast<const char*>(names->data) + l.name_offset, l.name_size);
+    const bool point = l.type == LightRecord::kPoint, spot = l.type == LightRecord::kSpot;
+    const bool directional = l.type == LightRecord::kDirectional;
+    const nlohmann::ordered_json null;
+    list.push_back({{"name", name},
+                    {"type", directional ? "directional"
+                             : point     ? "point"
+                             : spot      ? "spot"
+                                         : "unknown"},
+                    {"position", point || spot ? vec3(l.position) : null},
+                    {"direction", directional || spot ? vec3(l.direction) : null},
+                    {"range", (point || spot) && l.range > 0 ? nlohmann::ordered_json(l.range) : null},
+                    {"color", vec3(l.color)},
+                    {"intensity", l.intensity},
+                    {"inner_cone_angle", spot ? nlohmann::ordered_json(l.inner_cone_angle) : null},
+                    {"outer_cone_angle", spot ? nlohmann::ordered_json(l.outer_cone_angle) : null}});
+  }
+  return list;
 }
 
 int run_inspect(const std::vector<std::string>& argv) {
@@ -101,7 +139,10 @@ int run_inspect(const std::vector<std::string>& argv) {
                                  {"offset", s.offset},
                                  {"bytes", s.size},
                                  {"crc32c", s.crc}});
-      std::printf("{\"file\":%s,%s\n", json_quote(path).c_str(), j.dump().c_str() + 1);  // any name (names.h)
+      j["lights"] = lights_json(r);
+      // Light names are the file's bytes: invalid UTF-8 is replaced, never thrown.
+      const std::string text = j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+      std::printf("{\"file\":%s,%s\n", json_quote(path).c_str(), text.c_str() + 1);  // any name (names.h)
       continue;
     }
     std::printf("%s: geombake baked file %u.%u, %llu bytes, %llu sections (alignment %u), all checksums verified\n",

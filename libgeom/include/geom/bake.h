@@ -12,6 +12,11 @@
 //   indices       Indices           U32     3 x triangles    welded triangles, one per input triangle, in
 //                                                            input order (collapsed ones kept: they draw nothing)
 //   weld_remap    WeldRemap         U32     source vertices  Scene vertex -> welded vertex
+//   caster_hull   CasterHull        F64x4   planes           (nx, ny, nz, d) in input coordinates, inside where
+//                                                            n.p + d >= 0: the convex hull of `positions` (at
+//                                                            most 16 supporting planes of it), as
+//                                                            BakeOptions::caster_hull computes it (empty when
+//                                                            they span no volume); only when that is set
 //   face_planes   FacePlanes        F32x4   triangles        (nx, ny, nz, d) in input coordinates, n.p + d = 0:
 //                                                            the face's stored plane (geom/face_planes.h, shared
 //                                                            by coplanar neighbours), (0,0,0,0) if degenerate
@@ -30,6 +35,10 @@
 //                                                            geom/scene.h light_homogeneous gives it (w = 0:
 //                                                            directional, (x, y, z) towards the light); scene
 //                                                            lights first, then BakeOptions::lights
+//   light_params  LightParams       Record  lights           LightRecord, 120 B (geom/baked_records.h): each
+//                                                            light whole (type, position, direction, range,
+//                                                            colour, intensity, cone angles), input coordinates
+//   light_names   LightNames        Utf8    bytes            the lights' names, one after the other
 //   light_sides   LightSides        Record  sides            per light, item = light index: its exact volume
 //   light_caps    LightCaps         Record  caps             (geom/shadow_volume.h build_light_volume)
 //   light_planes  LightPlanes       F32x4   planes
@@ -50,8 +59,15 @@
 #include "geom/pipeline.h"
 #include "geom/report.h"
 #include "geom/scene.h"
+#include "geom/span.h"
 
 namespace geom {
+
+// The convex hull of `points` as planes, 4 doubles each (nx, ny, nz, d), n
+// unit and pointing inside, a point p inside where n.p + d >= 0; false when the points
+// span no volume. geom::focus's focus_caster_hull (geom/focus.h, CGAL) is one:
+// the bake takes it as a function so that geom::bake itself links no CGAL.
+using CasterHullFunction = bool (*)(PositionSpan points, std::vector<double>& planes);
 
 struct BakeOptions {
   // The pipeline's settings and the buffers asked for: each of face_planes,
@@ -65,6 +81,9 @@ struct BakeOptions {
   bool weld_remap = true;
   bool topology_report = true;
   bool scene_lights = true;  // an exact volume per KHR_lights_punctual light of the scene
+  // The caster_hull section (the per-frame focus's precomputed hull), made by
+  // this function when set; `geombake bake` sets geom::focus_caster_hull.
+  CasterHullFunction caster_hull = nullptr;
   // More static lights, in input coordinates, after the scene's; each gets an
   // exact volume. One without a name is named "--light N" (N from 1).
   std::vector<Light> lights;

@@ -5,7 +5,7 @@
 // It reads from memory; reading or mapping a file is geom/baked_file.h. Written by
 // geom/baked_writer.h (`geombake bake`); listed and verified by `geombake inspect`.
 //
-// FORMAT (version 1.0). Every integer is little-endian. A file is
+// FORMAT (version 2.0). Every integer is little-endian. A file is
 //
 //   [header 64 B][section table: section_count x 64 B][zero padding][section 0]
 //   [zero padding][section 1] ... [section n-1]      (the file ends at the last section's end)
@@ -14,7 +14,7 @@
 //    0 u8[8]  magic        89 47 42 4B 0D 0A 1A 0A   ("\x89GBK\r\n\x1a\n", PNG style: catches
 //                                                    text-mode and 7-bit transfers)
 //    8 u32    endian_tag   0x0A0B0C0D, stored as 0D 0C 0B 0A
-//   12 u16    version_major  1: a reader refuses any other major version
+//   12 u16    version_major  2: a reader refuses any other major version, older or newer
 //   14 u16    version_minor  0: later minors only add section types (unknown ones are listed, not refused)
 //   16 u32    header_size    64
 //   20 u32    entry_size     64 (size of one section table entry)
@@ -49,12 +49,17 @@
 //
 // SECTIONS written by `geombake bake` (geom/bake.h says what each holds; the
 // records' structs are in geom/baked_records.h, standard library only like
-// this file; their layouts are documented in geom/esm_quads.h and
-// geom/shadow_volume.h):
+// this file; their layouts are documented there, in geom/esm_quads.h and
+// geom/shadow_volume.h). Every section's frame: "input", "local" or "-" (no
+// coordinates: indices, counts, text).
 //   type               format  stride  count            frame  upload as
 //   Positions          F32x3   12      welded vertices  input  GL_ARRAY_BUFFER
 //   Indices            U32     4       3 x triangles    -      GL_ELEMENT_ARRAY_BUFFER
 //   WeldRemap          U32     4       source vertices  -      (source vertex -> welded vertex)
+//   CasterHull         F64x4   32      planes           input  (nx, ny, nz, d), n unit, inside where n.p + d >= 0:
+//                                                              the convex hull of the positions (at most 16
+//                                                              supporting planes of it), for the focus
+//                                                              (geom/focus.h FocusOptions::caster_hull)
 //   FacePlanes         F32x4   16      triangles        input  (nx, ny, nz, d), n unit, n.p + d = 0
 //   TopologyReport     Utf8    1       bytes            -      (JSON, keys of `geombake info --json`)
 //   Frame              F64x3   24      1                input  (origin of the local frame: local = input - origin)
@@ -65,9 +70,14 @@
 //   VolumePlanes       F32x4   16      planes           local  GL_TEXTURE_BUFFER (RGBA32F)
 //   AdjacencyIndices   U32     4       6 x triangles    -      GL_ELEMENT_ARRAY_BUFFER (GL_TRIANGLES_ADJACENCY
 //                                                              over Positions)
-//   Lights             F64x4   32      lights           input  ((x, y, z, w), w = 0 directional)
+//   Lights             F64x4   32      lights           input  ((x, y, z, w), w = 0 directional: u_light)
+//   LightParams        Record  120     lights           input  LightRecord: the whole KHR_lights_punctual light
+//                                                              (type, position, direction, range, colour,
+//                                                              intensity, cone angles), same order as Lights
+//   LightNames         Utf8    1       bytes            -      the lights' names (LightRecord's name_offset/size)
 //   LightSides/Caps/Planes (item = light index): local, as VolumeSides/Caps/Planes, exact for that light
-//   SilhouetteReport   Utf8    1       bytes            -      (JSON: what each rule saved, the lights)
+//   SilhouetteReport   Utf8    1       bytes            -      (JSON: what each rule saved, the lights; its
+//                                                              "frame" and lights' "light" in input coordinates)
 // Frames: "input" is the input file's coordinates and units (node transforms
 // applied); "local" is the frame whose origin the Frame section holds, so a
 // record drawn with the camera's matrix times a translation by that origin
@@ -75,10 +85,10 @@
 // into it as (x - w ox, y - w oy, z - w oz, w).
 //
 // READER: Reader::open() validates, in this order: size, magic, endianness,
-// version, header and table bounds, header checksum, file size (truncation),
-// alignment, then per section: name, format and stride, size = count x stride,
-// alignment, order and overlap, bounds, zero padding, checksum; at last that
-// the file ends with the last section. On success sections()
+// version (a file of another major version, older or newer, is refused with
+// both versions named: rebake it with the matching geombake), header and table bounds, header checksum, file size
+// (truncation), alignment, then per section: name, format and stride, size = count x stride, alignment, order and
+// overlap, bounds, zero padding, checksum; at last that the file ends with the last section. On success sections()
 // gives zero-copy views into the caller's buffer (which must outlive them); on
 // failure error() says what is wrong in one line. It never throws (beyond
 // std::bad_alloc from the section vector, bounded by the table size), never
@@ -99,7 +109,7 @@ namespace baked {
 
 inline constexpr unsigned char kMagic[8] = {0x89, 'G', 'B', 'K', 0x0D, 0x0A, 0x1A, 0x0A};
 inline constexpr uint32_t kEndianTag = 0x0A0B0C0Du;
-inline constexpr uint16_t kVersionMajor = 1;
+inline constexpr uint16_t kVersionMajor = 2;
 inline constexpr uint16_t kVersionMinor = 0;
 inline constexpr uint32_t kHeaderSize = 64;
 inline constexpr uint32_t kEntrySize = 64;
@@ -119,6 +129,7 @@ enum class SectionType : uint32_t {
   TopologyReport = 5,    // Utf8 JSON text
   Frame = 6,             // F64x3, one: the origin of the local frame of the silhouette buffers
   SilhouetteReport = 7,  // Utf8 JSON text: what each rule saved, the lights
+  CasterHull = 8,        // F64x4 planes (nx, ny, nz, d) of the positions' convex hull, input coordinates
   // Silhouette buffers: records and plane tables in the local frame (geom/bake.h).
   EsmQuads = 16,          // Record 36 B per quad (geom/esm_quads.h)
   EsmPlanes = 17,         // F32x4 plane table of the quads
@@ -130,6 +141,8 @@ enum class SectionType : uint32_t {
   LightSides = 65,        // per light (item = its index in Lights): exact volume sides, Record 32 B
   LightCaps = 66,         // per light: exact volume caps, Record 40 B
   LightPlanes = 67,       // per light: F32x4 plane table
+  LightParams = 68,       // Record 120 B per light (LightRecord, geom/baked_records.h), input coordinates
+  LightNames = 69,        // Utf8: the lights' names, LightRecord::name_offset / name_size into it
 };
 
 // The element type of a section.
@@ -237,6 +250,12 @@ inline const char* type_name(SectionType t) {
       return "light_caps";
     case SectionType::LightPlanes:
       return "light_planes";
+    case SectionType::CasterHull:
+      return "caster_hull";
+    case SectionType::LightParams:
+      return "light_params";
+    case SectionType::LightNames:
+      return "light_names";
   }
   return "unknown";
 }
@@ -366,9 +385,16 @@ class Reader {
     if (tag != kEndianTag) return fail("corrupt header: bad endianness tag " + detail::hex32(tag));
     version_major_ = load_u16(p + 12);
     version_minor_ = load_u16(p + 14);
-    if (version_major_ != kVersionMajor)
-      return fail("unsupported version " + to_string(version_major_) + "." + to_string(version_minor_) +
-                  " (this reader reads " + to_string(kVersionMajor) + ".x)");
+    if (version_major_ != kVersionMajor) {
+      const std::string file_version = to_string(version_major_) + "." + to_string(version_minor_);
+      const std::string reader_version = to_string(kVersionMajor) + "." + to_string(kVersionMinor);
+      return fail("unsupported version " + file_version + ": the file is " +
+                  (version_major_ < kVersionMajor ? "older" : "newer") + " than this reader's version " +
+                  reader_version + " (it reads " + to_string(kVersionMajor) +
+                  ".x): bake it again with a geombake that "
+                  "writes " +
+                  reader_version);
+    }
     uint32_t header_size = load_u32(p + 16), entry_size = load_u32(p + 20);
     uint32_t count = load_u32(p + 24);
     alignment_ = load_u32(p + 28);
@@ -461,10 +487,10 @@ class Reader {
 // the section and the element:
 //   - any non-finite float in a float section (f32, f32xN, f64x3, f64x4) or in
 //     the float fields of the records (esm_quads, volume_/light_sides,
-//     volume_/light_caps: their points);
+//     volume_/light_caps: their points; light_params: every double);
 //   - a coordinate (positions, frame, record points, a point light's position)
 //     whose magnitude is over kMaxCoordinate;
-//   - a plane (face_planes, esm_planes, volume_/light_planes) whose normal has
+//   - a plane (face_planes, caster_hull, esm_planes, volume_/light_planes) whose normal has
 //     a component over 1 + 1e-3 or whose offset is over 2 x kMaxCoordinate;
 //   - a light (lights: x, y, z, w) whose w is neither 0 (directional) nor 1
 //     (point, as the writer stores it), that is directional with a direction
@@ -521,12 +547,14 @@ inline FloatLayout float_layout(const Section& s) {
     case Format::F64x4:
       l.floats = 4, l.f64 = true;
       break;
-    case Format::Record:  // the records' points (geom/baked_records.h): floats first
+    case Format::Record:  // the records' floats (geom/baked_records.h)
       if (s.type == SectionType::EsmQuads || s.type == SectionType::VolumeSides || s.type == SectionType::LightSides)
         l.floats = 6, l.kind = FloatLayout::Coordinates;
       if (s.type == SectionType::VolumeCaps || s.type == SectionType::LightCaps)
         l.floats = 9, l.kind = FloatLayout::Coordinates;
-      if (uint64_t(l.floats) * 4 > s.stride) l.floats = 0;  // a record too short to hold them: not this layout
+      if (s.type == SectionType::LightParams)  // LightRecord: 13 doubles after 16 bytes of integers
+        l.floats = 13, l.first = 16, l.f64 = true;
+      if (l.first + uint64_t(l.floats) * (l.f64 ? 8 : 4) > s.stride) l.floats = 0;  // too short: not this layout
       return l;
     default:
       return l;
@@ -537,6 +565,7 @@ inline FloatLayout float_layout(const Section& s) {
       l.kind = FloatLayout::Coordinates;
       break;
     case SectionType::FacePlanes:
+    case SectionType::CasterHull:
     case SectionType::EsmPlanes:
     case SectionType::VolumePlanes:
     case SectionType::LightPlanes:

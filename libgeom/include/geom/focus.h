@@ -95,6 +95,13 @@ struct FocusBox {
   double max[3];
 };
 
+// A half-space: a point p is inside where n.p + d >= 0 (n unit, pointing inside).
+// The element of a baked file's caster_hull section (F64x4: nx, ny, nz, d).
+struct FocusPlane {
+  double n[3];
+  double d;
+};
+
 enum class FocusMethod : uint8_t { Psm, Lispsm, Uniform };
 enum class LightKind : uint8_t { Point, InvertedPoint, Directional };
 
@@ -153,8 +160,16 @@ struct FocusOptions {
   // Vertices are H's corners plus, at times, points in the middle of edges.
   bool faces = true;
   // Optional shadow casters: S becomes the convex hull of these points
-  // intersected with the scene box (the box alone when empty).
+  // intersected with the scene box (the box alone when empty); a hull of
+  // more than 16 faces is bounded by the supporting planes of its 16
+  // largest (of distinct directions), so that the frame's clips stay few.
+  // The hull is computed every call (CGAL); static casters pass caster_hull.
   PositionSpan casters;
+  // Optional, in place of `casters` (which it overrides): their convex hull
+  // computed once, by focus_caster_hull or read from a baked file's
+  // caster_hull section (4 doubles per plane, stride 32). S becomes the box
+  // cut by these planes: the same S, the same result, without a hull per call.
+  StridedSpan<FocusPlane> caster_hull;
   // Optional: each stage's time is added here (a clock read per stage).
   FocusStageTimes* stage_times = nullptr;
   // Point, spot: the floor of the light's near plane; 0 = automatic (1e-3 of
@@ -233,6 +248,15 @@ struct FocusResult {
 // false only for FocusFallback::InvalidInput.
 bool compute_focus(const CameraMatrices& camera, const Light& light, const FocusBox& scene, const FocusOptions& options,
                    FocusResult& out);
+
+// The convex hull of static casters as the planes FocusOptions::caster_hull
+// takes (CGAL's 3D hull, once: at load or bake time; at most 16 planes, each
+// supporting the hull, see FocusOptions::casters), 4 doubles per plane
+// (nx, ny, nz, d), appended to `planes` after clearing it. The same planes
+// compute_focus makes from FocusOptions::casters. False (planes empty) when
+// the points span no volume or one is not finite. Matches geom/bake.h's
+// CasterHullFunction: `geombake bake` stores its result as caster_hull.
+bool focus_caster_hull(PositionSpan casters, std::vector<double>& planes);
 
 const char* focus_method_name(FocusMethod method);        // "psm", "lispsm", "uniform"
 const char* light_kind_name(LightKind kind);              // "point", "inverted_point", "directional"
