@@ -25,7 +25,7 @@
 //  - error_cast, error_self: the same per class (geom/shadow_error.h): cast, a
 //    receiver shadowed by another object and the lit pixels nearest to such a
 //    shadow; self, a caster in its own shadow (terminators, concavities). The
-//    issue-18 goals are judged on error_cast. All four come from
+//    pixel-exactness claims (Kenzel 2013, Sect. 5.2) are judged on error_cast. All four come from
 //    geom::shadow_error, the viewer's figures too.
 //  - error_fraction (scenes where a soft technique runs): the mean absolute
 //    difference of the light fraction from the area-light reference of
@@ -38,9 +38,9 @@
 // Output: a table on stdout; with -o DIR: DIR/results.csv, DIR/results.json,
 // DIR/bake.csv, DIR/plot.svg (error against time, one panel per scene, a line
 // per technique, a point per map size) and DIR/summary.md (the best technique
-// at each time budget, the goals of the issue met or missed).
+// at each time budget, and whether each published claim checked holds: claims.h).
 // --time-only: the times and counters alone, no Embree reference (errors -1),
-// no budget summary or goals: the run for a GPU machine (scripts/gpu-timing.sh).
+// no budget summary or claims: the run for a GPU machine (scripts/gpu-timing.sh).
 //  - primitives, vs_invocations, gs_invocations, fs_invocations: the shadow
 //    passes' pipeline statistics of one frame (render::shadow_counters; -1
 //    where the context has no ARB_pipeline_statistics_query), the counts
@@ -63,6 +63,7 @@
 #include <sstream>
 
 #include "bake_throughput.h"
+#include "claims.h"
 #include "cli/args.h"
 #include "cli/memory.h"
 #include "cli/output.h"
@@ -70,7 +71,6 @@
 #include "geom/area_reference.h"
 #include "geom/shadow_error.h"
 #include "geom/shadow_reference.h"
-#include "goals.h"
 #include "render/platform.h"
 #include "render/render.h"
 #include "results.h"
@@ -88,7 +88,7 @@ void score(const geom::PngImage& mask, const geom::ShadowReference& ref, Row& r)
   r.error_cast = e.error_cast, r.error_self = e.error_self;
 }
 
-// ---- summary: the best configuration at each time budget, and the goals ----
+// ---- summary: the best configuration at each time budget, and the claims ----
 
 struct Config {
   std::string technique;
@@ -153,7 +153,7 @@ int usage(const std::string& error) {
 // The whole run, from the command line, validated before anything is measured.
 struct Plan {
   bool quick = false, bake = true, render = true;
-  bool time_only = false;  // --time-only: no reference, no errors (-1), no budget summary or goals
+  bool time_only = false;  // --time-only: no reference, no errors (-1), no budget summary or claims
   int width = 640, height = 480, frames = 3;
   double light_radius = -1;  // -1: the default of each scene
   std::vector<int> sizes;
@@ -401,7 +401,7 @@ bool measure_scene(const Plan& plan, Loaded& l, Measured& m, std::string& error)
 }
 
 std::string results_json(const Plan& plan, const Measured& m, const std::vector<geombench::BakeRow>& bake,
-                         const std::vector<std::string>& best, const std::vector<std::string>& goal_lines) {
+                         const std::vector<std::string>& best, const std::vector<std::string>& claim_lines) {
   nlohmann::json results = nlohmann::json::array();
   for (const Row& r : m.rows)
     results.push_back({{"scene", r.scene},
@@ -443,32 +443,32 @@ std::string results_json(const Plan& plan, const Measured& m, const std::vector<
                             {"quick", plan.quick},     {"shadow_map_sizes", plan.sizes},
                             {"scenes", m.scenes_done}, {"skipped", m.skipped},
                             {"results", results},      {"bake", bj},
-                            {"best_at_budget", best},  {"goals", goal_lines}};
+                            {"best_at_budget", best},  {"claims", claim_lines}};
   return j.dump(1) + "\n";
 }
 
 // The tables on stdout; with -o, the five files, all or none (cli/output.h).
 bool report(const Plan& plan, const Measured& m, const std::vector<geombench::BakeRow>& bake, std::string& error) {
   const std::vector<std::string> best = plan.time_only ? std::vector<std::string>{} : budget_summary(m.rows);
-  const std::vector<std::string> goal_lines =
-      plan.time_only ? std::vector<std::string>{} : geombench::goals(m.rows, m.hard, bake);
+  const std::vector<std::string> claim_lines =
+      plan.time_only ? std::vector<std::string>{} : geombench::claims(m.rows, m.hard, bake);
   if (!best.empty()) {
     std::printf("\nBest technique at each time budget (mean time and mean error over the scenes):\n");
     for (const std::string& l : best) std::printf("  %s\n", l.c_str());
   }
-  if (!goal_lines.empty()) {
+  if (!claim_lines.empty()) {
     const std::string times = m.rows.empty() ? std::string("bake: CPU time per call")
                               : bake.empty() ? m.kind + " time"
                                              : m.kind + " time; bake: CPU time per call";
-    std::printf("\nGoals of the full run (%s):\n", times.c_str());
-    for (const std::string& l : goal_lines) std::printf("  %s\n", l.c_str());
+    std::printf("\nClaims checked on this run, each with its source (%s):\n", times.c_str());
+    for (const std::string& l : claim_lines) std::printf("  %s\n", l.c_str());
   }
   if (plan.out_dir.empty()) return true;
   const std::string& dir = plan.out_dir;
   cli::OutputSet out;
   out.add(dir + "/results.csv", results_csv(m.rows));
   out.add(dir + "/bake.csv", bake_csv(bake));
-  out.add(dir + "/results.json", results_json(plan, m, bake, best, goal_lines));
+  out.add(dir + "/results.json", results_json(plan, m, bake, best, claim_lines));
   std::vector<std::string> tech_names;
   for (render::Technique t : plan.techniques) tech_names.push_back(render::technique_name(t));
   out.add(dir + "/plot.svg", plot_svg(m.rows, m.scenes_done, tech_names, m.kind));
@@ -476,8 +476,8 @@ bool report(const Plan& plan, const Measured& m, const std::vector<geombench::Ba
   md << "# geombench summary\n\nrenderer: " << m.renderer << "; timing: " << m.kind_text << "; image " << plan.width
      << "x" << plan.height << "\n\n## Best technique at each time budget\n\n";
   for (const std::string& l : best) md << "- " << l << "\n";
-  md << "\n## Goals\n\n";
-  for (const std::string& l : goal_lines) md << "- " << l << "\n";
+  md << "\n## Claims checked\n\n";
+  for (const std::string& l : claim_lines) md << "- " << l << "\n";
   for (const std::string& l : m.skipped) md << "- skipped scene " << l << "\n";
   out.add(dir + "/summary.md", md.str());
   if (!out.commit(error)) return false;

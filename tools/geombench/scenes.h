@@ -25,7 +25,7 @@ namespace geombench {
 struct BenchScene {
   std::string name, description;
   geom::Scene scene;
-  bool hard = false;         // counts in the "hard scenes" goals (edsm against ssm)
+  bool hard = false;         // one of the hard scenes (edsm against ssm)
   bool default_view = true;  // true: render::default_view of the scene
   geom::Camera view;         // else this camera (width / height set by the caller)
   geom::Light light;

@@ -46,10 +46,11 @@ std::vector<std::string> size_law_lines(const std::vector<SizePoint>& points) {
       held += ok;
     }
     if (!checked) continue;
-    out.push_back(
-        std::string(held == checked ? "MET" : "MISSED") + ": " + technique +
-        " error falls as the map grows (largest <= 512's / 2, no step up by > 0.02 points): " + std::to_string(held) +
-        " of " + std::to_string(checked) + " scenes" + (misses.empty() ? "" : "; missed:" + misses));
+    out.push_back(std::string(held == checked ? "holds" : "fails") + ": " + technique +
+                  " error falls as the map grows (sampling: a finer map is no worse; largest <= 512's / 2, no step up "
+                  "by > 0.02 points): " +
+                  std::to_string(held) + " of " + std::to_string(checked) + " scenes" +
+                  (misses.empty() ? "" : "; missed:" + misses));
   }
   return out;
 }

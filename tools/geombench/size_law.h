@@ -17,7 +17,7 @@ struct SizePoint {
   double error_visible = 0;
 };
 
-// One verdict line per technique over all scenes ("MET: ..." / "MISSED: ..."),
+// One verdict line per technique over all scenes ("holds: ..." / "fails: ..."),
 // naming up to a few misses; nothing for techniques measured at one size only.
 std::vector<std::string> size_law_lines(const std::vector<SizePoint>& points);
 

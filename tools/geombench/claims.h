@@ -1,5 +1,6 @@
-// tools/geombench/goals.h: the checks of a full geombench run, one line each,
-// "MET: ..." or "MISSED: ..." (the shadow volumes near zero error, the
+// tools/geombench/claims.h: the published claims a full geombench run checks,
+// one line each, "holds: ..." or "fails: ...", each naming the paper and
+// section it comes from (the shadow volumes near zero error, the
 // silhouette maps' error against ssm's (Kenzel 2013, Sect. 5.2) and their
 // cost, the warped maps on wide-depth, the bake against meshoptimizer, the soft
 // techniques, the error falling as the map grows: size_law.h).
@@ -13,7 +14,7 @@
 
 namespace geombench {
 
-std::vector<std::string> goals(const std::vector<Row>& rows, const std::set<std::string>& hard,
-                               const std::vector<BakeRow>& bake);
+std::vector<std::string> claims(const std::vector<Row>& rows, const std::set<std::string>& hard,
+                                const std::vector<BakeRow>& bake);
 
 }  // namespace geombench
