@@ -32,6 +32,8 @@ pack() {
   mkdir -p "$tmp/bin" "$tmp/lib"
   cp "$exe" "$tmp/bin/"
   cp -r shaders "$tmp/shaders"
+  mkdir -p "$tmp/data"  # the file scenes (GEOMBENCH_DATA); the Quake 3 map is read from openarena-data where installed
+  cp data/default_scene.gltf tests/data/draco/bunny_gltf.drc tests/data/draco/LICENSE.draco-repo "$tmp/data/"
   ldd "$exe" | awk '/=> \// { print $1, $3 }' | while read -r name path; do
     case "$name" in
       libc.so* | libm.so* | libdl.so* | librt.so* | libpthread.so* | ld-linux* | libresolv.so*) continue ;;
@@ -46,6 +48,7 @@ pack() {
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+export GEOMBENCH_DATA="$here/data"
 mkdir -p "$here/out"
 "$here/bin/geombench" --time-only --no-bake --shaders "$here/shaders" -o "$here/out" "$@"
 RUN

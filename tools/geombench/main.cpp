@@ -146,7 +146,8 @@ int usage(const std::string& error) {
                "usage: geombench [--quick] [-o DIR] [--scenes a,b] [--techniques a,b] [--sizes 256,1024]\n"
                "                 [--size WxH] [--frames N] [--no-bake] [--no-render] [--light-radius R]\n"
                "                 [--time-only]\n"
-               "  (technique esm: extended shadow maps, Bujnak 2004; not exponential shadow maps)\n");
+               "  (technique esm: extended shadow maps, Bujnak 2004; not exponential shadow maps)\n"
+               "  GEOMBENCH_DATA=DIR: read default_scene.gltf and bunny_gltf.drc from DIR (scripts/gpu-timing.sh)\n");
   return error.empty() ? cli::kExitOk : cli::kExitUsage;
 }
 

@@ -7,6 +7,7 @@
 #include <draco/compression/decode.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 #include <iterator>
 
@@ -322,17 +323,27 @@ bool procedural_scene(const std::string& name, BenchScene& b) {
   return true;
 }
 
+// A file of the file scenes: under $GEOMBENCH_DATA when set (a folder holding
+// default_scene.gltf and bunny_gltf.drc, as scripts/gpu-timing.sh packs it),
+// else where the source tree keeps it.
+std::string data_file(const std::string& name, const std::string& source_path) {
+  const char* dir = std::getenv("GEOMBENCH_DATA");
+  return dir && *dir ? std::string(dir) + "/" + name : source_path;
+}
+
 // The scenes read from files (the bundled scene, the bunny, the Quake 3 map).
 bool file_scene(const std::string& name, BenchScene& b, std::string& error) {
   if (name == "default") {
-    const std::string path = std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf";
+    const std::string path =
+        data_file("default_scene.gltf", std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf");
     geom::ImportResult r = geom::import_file(path);
     if (!r.ok) return error = r.error, false;
     b.scene = std::move(r.scene);
     b.light = geom::light_from_scene(b.scene.lights);
     b.description = "data/default_scene.gltf, its own light";
   } else if (name == "near-plane") {
-    const std::string path = std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf";
+    const std::string path =
+        data_file("default_scene.gltf", std::string(GEOMBENCH_SOURCE_DIR) + "/data/default_scene.gltf");
     geom::ImportResult r = geom::import_file(path);
     if (!r.ok) return error = r.error, false;
     b.scene = std::move(r.scene);
@@ -343,7 +354,8 @@ bool file_scene(const std::string& name, BenchScene& b, std::string& error) {
     b.description = "data/default_scene.gltf, near plane 6 units from the eye, in the pipes' shadow";
   } else if (name == "scan") {
     add_ground(b.scene, -1.5f, 1.5f, -1.5f, 1.5f);
-    if (!add_draco(b.scene, std::string(GEOMBENCH_TEST_DATA) + "/draco/bunny_gltf.drc", error)) return false;
+    const std::string drc = data_file("bunny_gltf.drc", std::string(GEOMBENCH_TEST_DATA) + "/draco/bunny_gltf.drc");
+    if (!add_draco(b.scene, drc, error)) return false;
     b.light = point({0.9f, 1.8f, 0.7f});
     b.hard = true;
     b.description = "the Stanford bunny (Draco test data), point light";
