@@ -443,19 +443,29 @@ TEST(Hostile, MillionGltfNodes) {
   EXPECT_LT(r.wall_seconds, 10 * cli::kSanitizerFactor);
 }
 
-// Work abandoned by --timeout really stops (its next allocation throws, it
-// unwinds) instead of running on beside the inputs still baking: with enough
-// quick inputs after it to outlast it, the run costs the quick inputs plus a
-// fraction of the slow one, not both whole; nothing crashes while it unwinds.
-TEST(Hostile, TimedOutWorkIsStopped) {
-  const fs::path d = scratch("abandon");
+namespace {
+
+// A glTF that takes about a second to bake (a fifth of that under the
+// sanitizers): one triangle instanced by 200,000 root nodes.
+void write_slow_gltf(const fs::path& path) {
   const int n = cli::kSanitizerFactor > 1 ? 50000 : 200000;
   std::string nodes = "{\"mesh\":0}", roots = "0";
   for (int i = 1; i < n; ++i) {
     nodes += ",{\"mesh\":0,\"translation\":[" + std::to_string(i) + ",0,0]}";
     roots += "," + std::to_string(i);
   }
-  write(d / "slow.gltf", triangle_gltf("", ",\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[" + roots + "]}]"));
+  write(path, triangle_gltf("", ",\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[" + roots + "]}]"));
+}
+
+}  // namespace
+
+// Work abandoned by --timeout really stops (its next allocation throws, it
+// unwinds) instead of running on beside the inputs still baking: with enough
+// quick inputs after it to outlast it, the run costs the quick inputs plus a
+// fraction of the slow one, not both whole; nothing crashes while it unwinds.
+TEST(Hostile, TimedOutWorkIsStopped) {
+  const fs::path d = scratch("abandon");
+  write_slow_gltf(d / "slow.gltf");
   write(d / "q0.obj", grid_obj(100));
   const cli::Run slow =
       cli::run({"bake", (d / "slow.gltf").string(), "-o", (d / "slow.gbake").string()}, d / "l1", 120);
@@ -511,13 +521,7 @@ TEST(Hostile, TimedOutWorkIsStopped) {
 // never a signal. Limits spread over the slow input's whole time.
 TEST(Hostile, TimeoutAnywhereEndsCleanly) {
   const fs::path d = scratch("anywhere");
-  const int n = cli::kSanitizerFactor > 1 ? 50000 : 200000;
-  std::string nodes = "{\"mesh\":0}", roots = "0";
-  for (int i = 1; i < n; ++i) {
-    nodes += ",{\"mesh\":0,\"translation\":[" + std::to_string(i) + ",0,0]}";
-    roots += "," + std::to_string(i);
-  }
-  write(d / "slow.gltf", triangle_gltf("", ",\"nodes\":[" + nodes + "],\"scenes\":[{\"nodes\":[" + roots + "]}]"));
+  write_slow_gltf(d / "slow.gltf");
   write(d / "quick.obj", grid_obj(4));
   const cli::Run slow = cli::run({"bake", (d / "slow.gltf").string(), "-o", (d / "slow.gbake").string()}, d, 120);
   ASSERT_EQ(slow.exit_code, 0) << cli::describe(slow);

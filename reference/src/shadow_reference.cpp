@@ -93,85 +93,55 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
   return shadow_reference(positions, indices, index_count, camera, light, nullptr);
 }
 
-ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices, size_t index_count,
-                                 const Camera& camera, const Light& light, const uint32_t* triangle_objects) {
-  ShadowReference out;
-  const int W = camera.width, H = camera.height;
-  RayCast cast;
-  out.error = prepare_ray_cast("shadow reference", positions, indices, index_count, camera, light,
-                               RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION, cast);
-  if (!out.error.empty()) return out;
-  const size_t tri_count = index_count / 3;
-  const RayScene& rs = cast.scene;
-  const EyeRays& eye = cast.eye;
-  const LocalLight& light_local = cast.light;
-  const double Lw = light_local.w, offset = cast.offset;
-  const V3 L = light_local.L;
+namespace {
 
-  std::vector<uint32_t> objects;
-  if (triangle_objects) {
-    objects.assign(triangle_objects, triangle_objects + tri_count);
-    std::vector<uint32_t> sorted = objects;
-    std::sort(sorted.begin(), sorted.end());
-    out.object_count = uint32_t(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
-    for (uint32_t& o : objects)  // kNoObject must stay free for "none"
-      if (o == kNoObject) o = kNoObject - 1;
-  } else {
-    objects = triangle_components(positions, indices, index_count, out.object_count);
-  }
+// The object of each triangle: the caller's ids (kNoObject kept free for
+// "none"), else the connected components; `count` set to how many there are.
+std::vector<uint32_t> object_ids(PositionSpan positions, const uint32_t* indices, size_t index_count,
+                                 const uint32_t* triangle_objects, uint32_t& count) {
+  if (!triangle_objects) return triangle_components(positions, indices, index_count, count);
+  std::vector<uint32_t> objects(triangle_objects, triangle_objects + index_count / 3);
+  std::vector<uint32_t> sorted = objects;
+  std::sort(sorted.begin(), sorted.end());
+  count = uint32_t(std::unique(sorted.begin(), sorted.end()) - sorted.begin());
+  for (uint32_t& o : objects)
+    if (o == kNoObject) o = kNoObject - 1;
+  return objects;
+}
 
-  out.width = W, out.height = H;
-  out.mask.assign(size_t(W) * H, 128);
-  out.pixel_class.assign(size_t(W) * H, uint8_t(ShadowClass::None));
-  out.object.assign(size_t(W) * H, kNoObject);
-  out.blocker.assign(size_t(W) * H, kNoObject);
-  std::vector<uint8_t> grazing(size_t(W) * H, 0);
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x) {
-      V3 P, n;
-      uint32_t triangle;
-      if (!primary_hit(rs, eye, camera, x, y, positions, indices, P, n, triangle)) continue;
-      const V3 to_light = L - P * Lw;
-      const double cos_l = dot(n, normalize(to_light));
-      const size_t px = size_t(y) * W + x;
-      uint8_t& m = out.mask[px];
-      const uint32_t own = objects[triangle];
-      out.object[px] = own;
-      m = 0;
-      if (std::fabs(cos_l) < kGrazingCos) grazing[px] = 1;
-      if (!(cos_l > 0)) {  // facing away: the object's own terminator
-        out.pixel_class[px] = uint8_t(ShadowClass::Self), out.blocker[px] = own;
-        continue;
-      }
-      if (light_local.outside_cone(P)) {
-        out.pixel_class[px] = uint8_t(ShadowClass::Unlit);
-        continue;
-      }
-      const V3 o = P + n * offset;
-      const V3 dir = Lw != 0 ? L - o : L;
-      // Two queries: another object blocking (Cast), else the pixel's own (Self).
-      for (int pass = 0; pass < 2; ++pass) {
-        RTCRay ray{};
-        ray.org_x = float(o.x), ray.org_y = float(o.y), ray.org_z = float(o.z);
-        ray.dir_x = float(dir.x), ray.dir_y = float(dir.y), ray.dir_z = float(dir.z);
-        ray.tnear = 0;
-        ray.tfar = Lw != 0 ? 1.0f - 1e-4f : std::numeric_limits<float>::infinity();  // the light itself is no blocker
-        ray.mask = 0xffffffffu;
-        ObjectFilter f;
-        rtcInitIntersectContext(&f.context);
-        f.context.filter = object_filter;
-        f.objects = objects.data();
-        (pass == 0 ? f.skip : f.only) = own;
-        rtcOccluded1(rs.scene.get(), &f.context, &ray);
-        if (ray.tfar == -std::numeric_limits<float>::infinity()) {
-          out.pixel_class[px] = uint8_t(pass == 0 ? ShadowClass::Cast : ShadowClass::Self);
-          out.blocker[px] = f.accepted;
-          break;
-        }
-      }
-      if (out.pixel_class[px] == uint8_t(ShadowClass::None)) out.pixel_class[px] = uint8_t(ShadowClass::Lit), m = 255;
+// The class of a lit-facing point P (normal n) of object `own` inside the
+// light's cone: Cast when another object blocks the segment to the light, else
+// Self when its own object does, else Lit; `blocker` the blocking object.
+ShadowClass trace_to_light(const RayCast& cast, const std::vector<uint32_t>& objects, const V3& P, const V3& n,
+                           uint32_t own, uint32_t& blocker) {
+  const double Lw = cast.light.w;
+  const V3 o = P + n * cast.offset;
+  const V3 dir = Lw != 0 ? cast.light.L - o : cast.light.L;
+  for (int pass = 0; pass < 2; ++pass) {  // another object blocking (Cast), else the pixel's own (Self)
+    RTCRay ray{};
+    ray.org_x = float(o.x), ray.org_y = float(o.y), ray.org_z = float(o.z);
+    ray.dir_x = float(dir.x), ray.dir_y = float(dir.y), ray.dir_z = float(dir.z);
+    ray.tnear = 0;
+    ray.tfar = Lw != 0 ? 1.0f - 1e-4f : std::numeric_limits<float>::infinity();  // the light itself is no blocker
+    ray.mask = 0xffffffffu;
+    ObjectFilter f;
+    rtcInitIntersectContext(&f.context);
+    f.context.filter = object_filter;
+    f.objects = objects.data();
+    (pass == 0 ? f.skip : f.only) = own;
+    rtcOccluded1(cast.scene.scene.get(), &f.context, &ray);
+    if (ray.tfar == -std::numeric_limits<float>::infinity()) {
+      blocker = f.accepted;
+      return pass == 0 ? ShadowClass::Cast : ShadowClass::Self;
     }
+  }
+  return ShadowClass::Lit;
+}
 
+// The uncertain band: every pixel next to one of another mask value, and every
+// grazing pixel (|N.L| under kGrazingCos).
+void mark_uncertain(ShadowReference& out, const std::vector<uint8_t>& grazing) {
+  const int W = out.width, H = out.height;
   out.uncertain.assign(size_t(W) * H, 0);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
@@ -184,6 +154,48 @@ ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices
         }
       out.uncertain[size_t(y) * W + x] = near;
     }
+}
+
+}  // namespace
+
+ShadowReference shadow_reference(PositionSpan positions, const uint32_t* indices, size_t index_count,
+                                 const Camera& camera, const Light& light, const uint32_t* triangle_objects) {
+  ShadowReference out;
+  const int W = camera.width, H = camera.height;
+  RayCast cast;
+  out.error = prepare_ray_cast("shadow reference", positions, indices, index_count, camera, light,
+                               RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION, cast);
+  if (!out.error.empty()) return out;
+  const std::vector<uint32_t> objects = object_ids(positions, indices, index_count, triangle_objects, out.object_count);
+  out.width = W, out.height = H;
+  out.mask.assign(size_t(W) * H, 128);
+  out.pixel_class.assign(size_t(W) * H, uint8_t(ShadowClass::None));
+  out.object.assign(size_t(W) * H, kNoObject);
+  out.blocker.assign(size_t(W) * H, kNoObject);
+  std::vector<uint8_t> grazing(size_t(W) * H, 0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      V3 P, n;
+      uint32_t triangle;
+      if (!primary_hit(cast.scene, cast.eye, camera, x, y, positions, indices, P, n, triangle)) continue;
+      const double cos_l = dot(n, normalize(cast.light.L - P * cast.light.w));
+      const size_t px = size_t(y) * W + x;
+      const uint32_t own = objects[triangle];
+      out.object[px] = own;
+      out.mask[px] = 0;
+      if (std::fabs(cos_l) < kGrazingCos) grazing[px] = 1;
+      ShadowClass c;
+      if (!(cos_l > 0)) {  // facing away: the object's own terminator
+        c = ShadowClass::Self, out.blocker[px] = own;
+      } else if (cast.light.outside_cone(P)) {
+        c = ShadowClass::Unlit;
+      } else {
+        c = trace_to_light(cast, objects, P, n, own, out.blocker[px]);
+      }
+      out.pixel_class[px] = uint8_t(c);
+      if (c == ShadowClass::Lit) out.mask[px] = 255;
+    }
+  mark_uncertain(out, grazing);
   out.ok = true;
   return out;
 }
