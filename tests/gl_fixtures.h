@@ -125,6 +125,31 @@ inline geom::Light spot_light(glm::vec3 p, glm::vec3 axis, float half_angle_deg)
 
 inline bool directional(const geom::Light& l) { return l.type == geom::LightType::Directional; }
 
+enum class LightKind { Point, Spot, Directional };
+
+// A random camera around a scene of centre `c` and radius `r` (160x120, near
+// r/100) and a random light of `kind` for it: the frames of the laws that hold
+// on many random views (the warp law, the edge maps' law).
+inline void random_frame(std::mt19937& rng, glm::vec3 c, float r, LightKind kind, geom::Camera& view,
+                         geom::Light& light) {
+  std::uniform_real_distribution<float> u(-1, 1), u01(0, 1);
+  const glm::vec3 target = c + glm::vec3(u(rng), 0.3f * u(rng), u(rng)) * (0.7f * r);
+  glm::vec3 dir(u(rng), 0.1f + 0.9f * u01(rng), u(rng));
+  const glm::vec3 eye = target + glm::normalize(dir) * (r * (0.3f + 1.7f * u01(rng)));
+  view = camera(eye, target, 30 + 40 * u01(rng), r * 0.01f, r * 100, 160, 120);
+  if (kind == LightKind::Directional) {
+    light = sun(glm::vec3(u(rng), 0.05f + u01(rng), u(rng)));
+    return;
+  }
+  const glm::vec3 p = c + glm::vec3(u(rng), 0.1f + u01(rng), u(rng)) * (1.5f * r);
+  if (kind == LightKind::Point) {
+    light = point_light(p);
+  } else {
+    const glm::vec3 aim = c + glm::vec3(u(rng), 0, u(rng)) * (0.5f * r);
+    light = spot_light(p, aim - p, 20 + 40 * u01(rng));
+  }
+}
+
 // One headless context for the whole test process.
 inline render::Platform* context() {
   static std::unique_ptr<render::Platform> platform = [] {

@@ -27,7 +27,7 @@ namespace {
 constexpr int kFrames = 30;
 constexpr int kSizes[] = {40, 64, 96, 256};
 
-enum class Kind { Point, Spot, Directional };
+using Kind = LightKind;
 
 struct Tally {
   int cases = 0, within[2] = {0, 0};  // edsm, esm-exact
@@ -62,25 +62,11 @@ Tally run_frames(render::State& state, const geom::Scene& scene, Kind kind, uint
   const glm::vec3 c(b[0], b[1], b[2]);
   const float r = b[3];
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1, 1), u01(0, 1);
   Tally t;
   for (int i = 0; i < kFrames; ++i) {
-    const glm::vec3 target = c + glm::vec3(u(rng), 0.3f * u(rng), u(rng)) * (0.7f * r);
-    glm::vec3 dir(u(rng), 0.1f + 0.9f * u01(rng), u(rng));
-    const glm::vec3 eye = target + glm::normalize(dir) * (r * (0.3f + 1.7f * u01(rng)));
-    const geom::Camera view = camera(eye, target, 30 + 40 * u01(rng), r * 0.01f, r * 100, 160, 120);
+    geom::Camera view;
     geom::Light light;
-    if (kind == Kind::Directional) {
-      light = sun(glm::vec3(u(rng), 0.05f + u01(rng), u(rng)));
-    } else {
-      const glm::vec3 p = c + glm::vec3(u(rng), 0.1f + u01(rng), u(rng)) * (1.5f * r);
-      if (kind == Kind::Point) {
-        light = point_light(p);
-      } else {
-        const glm::vec3 aim = c + glm::vec3(u(rng), 0, u(rng)) * (0.5f * r);
-        light = spot_light(p, aim - p, 20 + 40 * u01(rng));
-      }
-    }
+    random_frame(rng, c, r, kind, view, light);
     const geom::ShadowReference ref =
         geom::shadow_reference(geom::positions_of(scene.positions.data(), scene.vertex_count()), scene.indices.data(),
                                scene.indices.size(), view, light);
