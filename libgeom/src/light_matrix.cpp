@@ -276,33 +276,41 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, double ease, FocusR
 }
 
 // A warp's gain over the unwarped map: the least, over sample points of R
-// (its vertices, its centre, and the points halfway between them), of the
-// ratio of the two maps' resolutions there, each measured as the length in
-// the map of a small step along the camera's right, up and view directions
-// (summed). A warp trades resolution far away for resolution near the eye
-// (Stamminger and Drettakis 2002, Sect. 3; Wimmer et al. 2004, Sect. 4);
-// where it leaves some receiver much more coarsely resolved than the
-// unwarped map does, it is worse than no warp for that frame.
+// (its vertices, its centre, and the points halfway between them) and over
+// the camera's right, up and view directions, of the ratio of the two maps'
+// resolutions there, each measured as the length in the map of a small step
+// along that direction (directions the unwarped map resolves at under a
+// quarter of its best one at that point, such as a step along the light,
+// are left out). A warp trades resolution far away for resolution near the
+// eye (Stamminger and Drettakis 2002, Sect. 3; Wimmer et al. 2004, Sect. 4),
+// and in one direction for another; where it leaves some receiver much more
+// coarsely resolved than the unwarped map does, in any direction, it is worse
+// than no warp for that frame.
 static double warp_gain(const Frame& fr, const M4& warped, const M4& uniform) {
   V4 r4 = mul(fr.view_inv, 1, 0, 0, 0), u4 = mul(fr.view_inv, 0, 1, 0, 0);
   const V3 dirs[3] = {normalize(V3(r4.x, r4.y, r4.z)), normalize(V3(u4.x, u4.y, u4.z)), fr.view_dir};
-  auto length_at = [&](const M4& m, V3 p, double step) {
+  auto lengths_at = [&](const M4& m, V3 p, double step, double out[3]) {
     V4 a = mul_point(m, p);
-    if (!(a.w > 0)) return 0.0;
-    double sum = 0;
-    for (V3 d : dirs) {
-      V4 b = mul_point(m, p + d * step);
-      if (!(b.w > 0)) return 0.0;
-      sum += std::hypot(b.x / b.w - a.x / a.w, b.y / b.w - a.y / a.w);
+    if (!(a.w > 0)) return false;
+    for (int k = 0; k < 3; ++k) {
+      V4 b = mul_point(m, p + dirs[k] * step);
+      if (!(b.w > 0)) return false;
+      out[k] = std::hypot(b.x / b.w - a.x / a.w, b.y / b.w - a.y / a.w);
     }
-    return sum;
+    return true;
   };
   V3 c = box_centre(fr.r_verts);
   double gain = HUGE_VAL;
   auto at = [&](V3 p) {
-    double step = 1e-4 * std::fmax(depth_of(fr, p), fr.cam_near);
-    double w = length_at(warped, p, step), u = length_at(uniform, p, step);
-    if (u > 0) gain = std::fmin(gain, w / u);
+    double step = 1e-4 * std::fmax(depth_of(fr, p), fr.cam_near), w[3], u[3];
+    if (!lengths_at(uniform, p, step, u)) return;
+    if (!lengths_at(warped, p, step, w)) {
+      gain = 0;
+      return;
+    }
+    double best = std::fmax(u[0], std::fmax(u[1], u[2]));
+    for (int k = 0; k < 3; ++k)
+      if (best > 0 && u[k] >= 0.25 * best) gain = std::fmin(gain, w[k] / u[k]);
   };
   at(c);
   for (V3 p : fr.r_verts) at(p), at((p + c) * 0.5);
