@@ -148,14 +148,15 @@ struct FocusOptions {
   // least, over samples of the receiver region R (its vertices, its centre,
   // the points halfway), of the ratio of their resolutions (the length in the
   // map of a step along the camera's right, up and view directions). When the
-  // paper's warp has a gain under this fraction, LiSPSM's warp eases (its n
-  // doubles, up to 256 times, towards uniform: Wimmer et al. 2004, Sect. 4.3)
-  // until the gain is reached; when none reaches it, and for PSM (whose eased
-  // warps do not tend to the unwarped map), the unwarped matrix is used
+  // paper's warp has a gain under this fraction, LiSPSM's warp under a
+  // directional light eases (its n doubles, up to 256 times, towards uniform:
+  // Wimmer et al. 2004, Sect. 4.3) until the gain is reached; when none
+  // reaches it, and for PSM and for point and spot lights (whose eased warps
+  // measured worse than uniform), the unwarped matrix is used
   // (FocusFallback::WarpNoGain). 0: always the paper's warp.
   // At 0.75 psm was at most uniform's error x1.1 + 2 pixels on 199 to 200 of
   // 200 random frames of the bundled scene per light type, lispsm on 197 to
-  // 199, and lispsm on 188 of 200 down geombench's wide-depth alley at half
+  // 200, and lispsm on 188 of 200 down geombench's wide-depth alley at half
   // uniform's mean error (tests/test_gl_warp_law).
   double min_warp_gain = 0.75;
   // Optional receiver bounds: only points inside receive shadows. Tightens R and H.
