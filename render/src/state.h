@@ -155,10 +155,12 @@ bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
 // soft.cpp, shared by the soft techniques (FrameSettings::light_radius): the
 // widest penumbra's half width in texels over the scene's bounding sphere (the
 // edge quads' reach), on the scene-wide light frame or on a light clip matrix
-// of projection scale `projection` (projection_scale); soft_shade (one pass
-// with soft_light.frag's uniforms) is named in techniques.def.
+// of projection scale `projection` (projection_scale), at most `cap` texels
+// (the edge quads' 32 unless given); soft_shade (one pass with
+// soft_light.frag's uniforms) is named in techniques.def.
 float soft_reach(const Frame& f);
 float soft_reach(const Frame& f, float projection);
+float soft_reach(const Frame& f, float projection, float cap);
 
 // Shared by the map techniques (shadow_map.cpp).
 LightFrame light_frame(const State& s, const FrameLight& light);
