@@ -20,6 +20,11 @@ namespace {
 
 constexpr float kMaxReach = 32;  // texels: the edge quads' and the blocker search's widest reach
 
+// pcf-soft's widest reach: its search and kernel take a fixed number of taps
+// however far they reach, so it is bounded in map widths (kMaxReach texels of
+// a 512 map), not in texels: a finer map must not narrow the penumbra.
+float map_reach(const Frame& f) { return kMaxReach * std::max(1.0f, float(f.n) / 512.0f); }
+
 void set_soft_uniforms(Frame& f, GLuint p) {
   set(p, "u_light_proj", f.light_frame.proj);
   set(p, "u_light_radius", f.fs.light_radius);
@@ -105,11 +110,7 @@ bool pcf_soft_shade(Frame& f, GLuint p) {
         scale[a] = std::max(scale[a], glm::length(glm::vec3(m[0][a], m[1][a], m[2][a])));
       }
   set(p, "u_light_radius", f.fs.light_radius);
-  // The search and the kernel take a fixed number of taps however far they
-  // reach, so the reach is bounded in map widths (kMaxReach texels of a 512
-  // map), not in texels: a finer map must not narrow the penumbra.
-  const float cap = kMaxReach * std::max(1.0f, float(f.n) / 512.0f);
-  set(p, "u_reach", glm::vec2(soft_reach(f, scale.x, cap), soft_reach(f, scale.y, cap)));
+  set(p, "u_reach", glm::vec2(soft_reach(f, scale.x, map_reach(f)), soft_reach(f, scale.y, map_reach(f))));
   return shade_scene(f);
 }
 
