@@ -210,6 +210,9 @@ float projection_scale(const glm::mat4& clip);
 // (`faces`: H's polygons; `cube_cone`: geom/focus.h FocusOptions::cube_cone_degrees).
 geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,
                         geom::FocusMethod method, bool faces = false, double cube_cone = 0);
+// The projection a focused matrix drew, for drawn_projection: "lispsm n=3.2",
+// "psm near=0.8", "uniform (fallback: warp_no_gain)".
+std::string describe_focus(geom::FocusMethod requested, const geom::FocusResult& r);
 
 // casters.cpp
 bool build_casters(State& s, std::string& error);  // bakes and uploads every caster, once
