@@ -65,6 +65,9 @@ bool edsm_soft_passes(Frame& f) {
   set(p, "u_light_radius", f.fs.light_radius);
   adjacency_edge_pass(f, p, "edge distance map", EdgeTarget::Distance);
   finish_map(f);
+  // The lookup reads each texel's comparison at its exact centre (lookup_edsm_soft.frag).
+  glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   f.second_texture = s.edge_map.color;
   f.lookup = "lookup_edsm_soft.frag";
   f.lookup_extra = "soft_light.frag";
