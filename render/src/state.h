@@ -58,6 +58,11 @@ struct State {
   glm::dvec3 origin{0};  // the scene buffer's local frame (its box centre): far coordinates keep float precision
   // Render targets, re-created when their size changes.
   Target camera, shadow_map, cube, edge_map;
+  // The edge map's clear value as a texture of the same size and format
+  // (edge_pass.cpp copies it over the edge map), re-made when either changes.
+  Texture edge_blank;
+  int edge_blank_n = 0;
+  GLenum edge_blank_format = 0;
   Sampler depth_sampler;  // reads a depth texture without comparison
   // esm / edsm: the depth and edge maps of their faces (1 fitted frustum or 6
   // cube faces) as 2D arrays (silhouette_faces.cpp).
