@@ -156,7 +156,7 @@ struct FocusOptions {
   // (FocusFallback::WarpNoGain). 0: always the paper's warp.
   // At 0.75 psm was at most uniform's error x1.1 + 2 pixels on 199 to 200 of
   // 200 random frames of the bundled scene per light type, lispsm on 197 to
-  // 200, and lispsm on 188 of 200 down geombench's wide-depth alley at half
+  // 200, and lispsm on 187 to 188 of 200 down geombench's wide-depth alley at half
   // uniform's mean error (tests/test_gl_warp_law).
   double min_warp_gain = 0.75;
   // Optional receiver bounds: only points inside receive shadows. Tightens R and H.
