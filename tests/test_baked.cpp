@@ -738,8 +738,14 @@ TEST(Bake, LightsGiven) {
   r = geom::bake_scene(s, "tetra", o);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.error, "tetra: light '--light 1' is not a usable (x, y, z, w): non-finite or all zero");
+  EXPECT_EQ(r.code, geom::ErrorCode::NonFinite);
   o.lights = lights_of({{1, std::nan(""), 0, 1}});
-  EXPECT_FALSE(geom::bake_scene(s, "tetra", o).ok);
+  r = geom::bake_scene(s, "tetra", o);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.code, geom::ErrorCode::NonFinite);
+  // bake_file: the import's refusal with its code, an unwritable output as Io.
+  r = geom::bake_file("/nonexistent/mesh.obj", "/nonexistent/out.gbake");
+  EXPECT_EQ(r.code, geom::ErrorCode::Io) << r.error;
 }
 
 // Scene lights of every type with random parameters (KHR_lights_punctual's

@@ -292,6 +292,32 @@ TEST(BatchBake, MaxMemory) {
   }
 }
 
+// --max-memory counts the casters' hull (about 96 bytes per vertex: copies of
+// the positions and CGAL's working memory) beside the per-triangle cost. A
+// mesh of 2 triangles and 80,000 vertices is refused by the estimate, at
+// once and naming the hull, under a limit that --no-caster-hull (no hull
+// made) bakes under.
+TEST(BatchBake, MaxMemoryCountsTheCasterHull) {
+  fs::path work = scratch("maxmem_hull");
+  const fs::path mesh = work / "scattered.obj";
+  {
+    std::ofstream f(mesh);
+    for (int i = 0; i < 80000; ++i) f << "v " << i % 211 << ' ' << i % 97 << ' ' << i << '\n';
+    f << "f 1 2 3\nf 1 3 4\n";
+  }
+  cli::Run r = cli::run({"bake", mesh.string(), "--max-memory", "6M", "-o", (work / "a.gbake").string()}, work / "log");
+  SCOPED_TRACE(cli::describe(r));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("Error: " + mesh.string() + ": baking 2 triangles and the hull of 80000 vertices needs about "),
+            std::string::npos);
+  EXPECT_NE(r.err.find("over the limit of 6291456 (--max-memory)"), std::string::npos);
+  EXPECT_FALSE(fs::exists(work / "a.gbake"));
+  r = cli::run({"bake", mesh.string(), "--no-caster-hull", "--max-memory", "6M", "-o", (work / "b.gbake").string()},
+               work / "log2");
+  EXPECT_EQ(r.exit_code, 0) << cli::describe(r);
+  EXPECT_TRUE(fs::exists(work / "b.gbake"));
+}
+
 // --timeout: an input that takes longer is refused with a message naming the
 // limit and leaves no output; the others are baked.
 TEST(BatchBake, Timeout) {

@@ -1,16 +1,17 @@
 // The soft techniques' depth test at every angle and size: the colonnade of
 // gl_fixtures.h (200 m deep, round pillars of 16 facets) under a sun from the
-// side with an angular radius of 0.02 rad, seen from one end. edsm-soft and
-// esm-soft decide their hard answers (a texel without an edge, a receiver in
-// front of the edges) by the receiver's plane at each texel's centre
-// (shaders/depth_plane.frag), as the hard maps do, so
+// side with an angular radius of 0.02 rad, seen from one end. pcf-soft tests
+// every tap, and edsm-soft and esm-soft their hard answers (a texel without an
+// edge, a receiver in front of the edges), by the receiver's plane at each
+// texel's centre (shaders/depth_plane.frag), as the hard maps do, and
+// pcf-soft's kernel is as wide as the penumbra along each axis of its map, so
 //  - their hard state (lit where the fraction exceeds 0.5) has at most 0.2%
 //    of the self class wrong (geom/shadow_error.h: terminators and the lit
 //    pixels next to them) at 1024 and 2048 texels, and the self error does
 //    not grow with the map by more than 0.02 points;
 //  - their light-fraction error against the area-light reference
 //    (geom/area_reference.h) does not grow with the map by more than 0.1
-//    points.
+//    points, and at 4096 is at most half of 512's.
 #include "geom/area_reference.h"
 #include "gl_fixtures.h"
 
@@ -37,7 +38,7 @@ TEST(GlSoftBias, SoftMapsDoNotShadowTheirOwnLitFaces) {
       geom::area_light_reference(positions, scene.indices.data(), scene.indices.size(), view, light, radius, 32);
   ASSERT_TRUE(area.ok) << area.error;
   const int sizes[] = {512, 1024, 2048, 4096};
-  for (Technique t : {Technique::EdsmSoft, Technique::EsmSoft}) {
+  for (Technique t : {Technique::PcfSoft, Technique::EdsmSoft, Technique::EsmSoft}) {
     SCOPED_TRACE(render::technique_name(t));
     double self[4], fraction[4];
     for (int k = 0; k < 4; ++k) {
@@ -72,6 +73,7 @@ TEST(GlSoftBias, SoftMapsDoNotShadowTheirOwnLitFaces) {
       EXPECT_LE(fraction[k], fraction[k - 1] + 0.001)
           << "the light-fraction error grows from " << sizes[k - 1] << " to " << sizes[k];
     }
+    EXPECT_LE(fraction[3], fraction[0] / 2) << "the light-fraction error at 4096 at most half of 512's";
   }
 }
 

@@ -257,6 +257,32 @@ TEST(ImportObj, OutOfRangeIndexNamesTheLine) {
   }
 }
 
+// Every refusal carries its kind as well as its message (geom/status.h): a
+// format's own rules broken, a count over the caller's limit, an unused or
+// used non-finite vertex, a file that cannot be read, an unknown type.
+TEST(ImportErrors, EachRefusalCarriesItsCode) {
+  ImportResult r = load_text("range.obj", std::string(kSquareV) + "f 1 2 9\n");
+  EXPECT_EQ(r.code, ErrorCode::Malformed) << r.error;
+  r = load_text("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  EXPECT_EQ(r.code, ErrorCode::NonFinite) << r.error;
+  EXPECT_NE(r.error.find("nan.obj: triangle 0 uses vertex 2 with a non-finite coordinate"), std::string::npos)
+      << r.error;
+  r = load_text("unused_nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan 1 0\nf 1 2 3\n");
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.code, ErrorCode::None);
+  ImportOptions limit;
+  limit.max_triangles = 1;
+  const std::string text = std::string(kSquareV) + "f 1 2 3\nf 1 3 4\n";
+  r = import_memory("two.obj", text.data(), text.size(), limit);
+  EXPECT_EQ(r.code, ErrorCode::TooLarge) << r.error;
+  EXPECT_EQ(r.error, "two.obj: 2 triangles, over the limit of 1");
+  r = import_file((temp_path() / "missing.obj").string());
+  EXPECT_EQ(r.code, ErrorCode::Io) << r.error;
+  r = load_text("mesh.xyz", "v 0 0 0\n");
+  EXPECT_EQ(r.code, ErrorCode::Malformed) << r.error;
+  EXPECT_FALSE(r.ok);
+}
+
 TEST(ImportObj, Utf16IsRefusedClearly) {
   for (bool big : {false, true}) {
     std::string text = std::string(kSquareV) + "f 1 2 3\n", u16 = big ? "\xFE\xFF" : "\xFF\xFE";

@@ -21,6 +21,7 @@
 #include <new>
 #include <vector>
 
+#include "geom/precondition.h"
 #include "work_count.h"
 
 namespace geom {
@@ -76,6 +77,10 @@ void non_manifold(uint32_t* out, const uint32_t* indices, const Topology& topolo
 }  // namespace
 
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, const Topology& topology) {
+  GEOM_PRECONDITION(triangle_count == 0 || out, "null output for " + std::to_string(triangle_count) + " triangles");
+  GEOM_PRECONDITION(topology.face_edges.size() == 3 * triangle_count,
+                    std::to_string(topology.face_edges.size()) + " face edges in the topology, expected " +
+                        std::to_string(3 * triangle_count) + " (build_topology of these triangles, not released)");
   const uint32_t kNone = Topology::kNone;
   // An edge of two faces: each face's neighbour is the other, either way
   // round; its slot of the edge is the twin, the vertex off it the next but one.
@@ -131,6 +136,8 @@ bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_cou
 }
 
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, size_t vertex_count) {
+  GEOM_PRECONDITION(triangle_count == 0 || out, "null output for " + std::to_string(triangle_count) + " triangles");
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, vertex_count);
   struct Half {
     uint32_t to, third, tri;
   };

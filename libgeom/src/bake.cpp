@@ -240,19 +240,20 @@ class Baker {
                             [this](const char* stage, Pipeline& p) { after_stage(stage, p); });
       flush(*kept_, true);
     } catch (const WriteFailed&) {
-      return failure("cannot write the output: " + out_->error());
+      return failure(ErrorCode::Io, "cannot write the output: " + out_->error());
     } catch (const std::bad_alloc&) {
-      return failure("out of memory while baking");
+      return failure(ErrorCode::OutOfMemory, "out of memory while baking");
     } catch (const std::exception& e) {
-      return failure(e.what());
+      return failure(ErrorCode::Malformed, e.what());
     }
     r_.ok = true;
     return std::move(r_);
   }
 
  private:
-  BakeResult failure(const std::string& what) {
+  BakeResult failure(ErrorCode code, const std::string& what) {
     BakeResult r;
+    r.code = code;
     r.error = name_ + ": " + what;
     return r;
   }
@@ -269,6 +270,7 @@ class Baker {
       double* h = &table_[4 * i];
       light_homogeneous(lights_[i], h);
       if (!finite4(h) || (h[0] == 0 && h[1] == 0 && h[2] == 0 && h[3] == 0)) {
+        r_.code = ErrorCode::NonFinite;
         r_.error = name_ + ": light '" + lights_[i].name + "' is not a usable (x, y, z, w): non-finite or all zero";
         return false;
       }
@@ -593,7 +595,7 @@ BakeResult bake_file(const std::string& input, const std::string& output, const 
   ImportResult imported = import_file(input, import_options);
   if (!imported.ok) {
     BakeResult r;
-    r.error = imported.error;
+    static_cast<Status&>(r) = std::move(imported);
     return r;
   }
   // The output holds the stored name, never the path as given (hermetic bytes):
@@ -609,6 +611,7 @@ BakeResult bake_file(const std::string& input, const std::string& output, const 
   std::string error;
   if (!write_baked(output, r.sections, error)) {
     r.ok = false;
+    r.code = ErrorCode::Io;
     r.error = input + ": cannot write " + output + ": " + error;
   }
   return r;

@@ -10,6 +10,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "geom/precondition.h"
 #include "live_faces.h"
 #include "vec3.h"
 
@@ -321,7 +322,30 @@ void octahedral_decode(const int16_t in[2], float v[3]) {
 
 EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                          const Topology& topology, const FacePlanes& fp, const EsmOptions& options) {
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, positions.size());
+  GEOM_PRECONDITION(fp.face_plane.size() == triangle_count,
+                    std::to_string(fp.face_plane.size()) + " face planes, expected " + std::to_string(triangle_count) +
+                        " (compute_face_planes of these triangles)");
   return QuadBuilder(positions, indices, topology, fp, options).build();
+}
+
+EsmQuads build_esm_quads(EsmQuad* out, PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                         const Topology& topology, const FacePlanes& fp, const EsmOptions& options) {
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, positions.size());
+  GEOM_PRECONDITION(fp.face_plane.size() == triangle_count,
+                    std::to_string(fp.face_plane.size()) + " face planes, expected " + std::to_string(triangle_count) +
+                        " (compute_face_planes of these triangles)");
+  GEOM_PRECONDITION(!options.quads_out, "options.quads_out is set: the quads go to `out`");
+  GEOM_PRECONDITION(triangle_count == 0 || out, "null output for " + std::to_string(triangle_count) + " triangles");
+  EsmOptions to_out = options;
+  size_t written = 0;
+  const size_t bound = esm_quads_bound(triangle_count);
+  to_out.quads_out = [out, &written, bound](const EsmQuad* quads, size_t count) {
+    if (written + count > bound) detail::precondition_failed("build_esm_quads", "more quads than esm_quads_bound");
+    std::memcpy(out + written, quads, count * sizeof(EsmQuad));
+    written += count;
+  };
+  return QuadBuilder(positions, indices, topology, fp, to_out).build();
 }
 
 }  // namespace geom

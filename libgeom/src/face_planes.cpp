@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geom/precondition.h"
+
 namespace geom {
 namespace {
 
@@ -134,6 +136,10 @@ void grow_group(const LocalPositions& local, const uint32_t* indices, const Topo
 
 FacePlanes compute_face_planes(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                const Topology& topology, const FacePlaneOptions& options) {
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, positions.size());
+  GEOM_PRECONDITION(topology.face_flags.empty() || topology.face_flags.size() == triangle_count,
+                    "a topology of " + std::to_string(topology.face_flags.size()) + " triangles, expected " +
+                        std::to_string(triangle_count) + " (build_topology of these triangles)");
   FacePlanes r;
   r.face_plane.assign(triangle_count, FacePlanes::kNone);
   r.normals.assign(triangle_count * 3, 0.0);

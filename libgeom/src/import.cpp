@@ -11,6 +11,7 @@
 #include <iterator>
 
 #include "file_read.h"
+#include "geom/validate.h"
 #include "importers.h"
 #include "uri.h"
 
@@ -43,37 +44,20 @@ std::string directory_of(const std::string& path) {
 }
 
 // The checks every importer's output must pass before anyone uses it.
-bool validate(Scene& s, const ImportOptions& options, std::string& error) {
-  if (s.indices.size() % 3 != 0) {
-    error = "internal: index count is not a multiple of 3";
-    return false;
-  }
-  size_t vc = s.vertex_count();
-  size_t tc = s.triangle_count();
+// The scene the importer made, checked as any untrusted soup is
+// (geom/validate.h), and against the caller's limit.
+Status validate(Scene& s, const std::string& name, const ImportOptions& options) {
+  Status st;
+  const size_t tc = s.triangle_count();
   if (options.max_triangles && tc > options.max_triangles) {
-    error = std::to_string(tc) + " triangles, over the limit of " + std::to_string(options.max_triangles);
-    return false;
+    st.code = ErrorCode::TooLarge;
+    st.error =
+        name + ": " + std::to_string(tc) + " triangles, over the limit of " + std::to_string(options.max_triangles);
+    return st;
   }
-  for (size_t i = 0; i < s.indices.size(); ++i) {
-    if (s.indices[i] >= vc) {
-      error = "triangle " + std::to_string(i / 3) + " uses vertex " + std::to_string(s.indices[i]) +
-              ", out of range (" + std::to_string(vc) + " vertices)";
-      return false;
-    }
-  }
-  bool all_finite = true;  // then no triangle uses a non-finite vertex: one pass over the vertices, not the corners
-  for (size_t i = 0; i < s.positions.size(); i += 3)
-    all_finite &= std::isfinite(s.positions[i]) & std::isfinite(s.positions[i + 1]) & std::isfinite(s.positions[i + 2]);
-  for (size_t t = 0; !all_finite && t < s.indices.size(); ++t) {
-    const float* p = &s.positions[3 * size_t(s.indices[t])];
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      error = "triangle " + std::to_string(t / 3) + " uses vertex " + std::to_string(s.indices[t]) +
-              " with a non-finite coordinate";
-      return false;
-    }
-  }
-  if (s.sources.size() != tc) s.sources.resize(tc);
-  return true;
+  st = validate_triangles(positions_of(s.positions.data(), s.vertex_count()), s.indices.data(), s.indices.size(), name);
+  if (st.ok && s.sources.size() != tc) s.sources.resize(tc);
+  return st;
 }
 
 }  // namespace
@@ -116,16 +100,26 @@ ImportResult import_memory(const std::string& name, const void* data, size_t siz
     std::string expected;
     for (size_t i = 0; i < std::size(kFormats); ++i)
       expected += std::string(i == 0 ? "" : i + 1 == std::size(kFormats) ? " or " : ", ") + kFormats[i].extension;
+    result.code = ErrorCode::Malformed;
     result.error = name + ": unknown file type '." + ext + "' (expected " + expected + ")";
     return result;
   }
   std::string error;
   bool ok = false;
+  ErrorCode code = ErrorCode::Malformed;
   try {
     ok = importer(in, result.scene, error);
-    if (ok) ok = validate(result.scene, options, error);
+    if (ok) {
+      Status checked = validate(result.scene, name, options);
+      if (!checked.ok) {
+        result.scene = Scene();
+        static_cast<Status&>(result) = std::move(checked);
+        return result;
+      }
+    }
   } catch (const std::bad_alloc&) {
     error = "out of memory (the file claims more data than can be held)";
+    code = ErrorCode::OutOfMemory;
     ok = false;
   } catch (const std::exception& e) {
     error = e.what();
@@ -133,6 +127,7 @@ ImportResult import_memory(const std::string& name, const void* data, size_t siz
   }
   if (!ok) {
     result.scene = Scene();
+    result.code = code;
     result.error = name + ": " + (error.empty() ? std::string("cannot be imported") : error);
     return result;
   }
@@ -150,8 +145,9 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
   const std::string ext = lower_extension(path);
   if (colon == std::string::npos && (ext == "pk3" || ext == "zip")) {  // an archive, no member named
     std::vector<std::string> names;
+    result.code = ErrorCode::Malformed;
     if (!list_archive_members(path, ".bsp", names, error))
-      result.error = path + ": " + error;
+      result.code = ErrorCode::Io, result.error = path + ": " + error;
     else
       result.error = path + (names.empty() ? ": no .bsp map inside the archive"
                                            : ": an archive: name a member (" + path + ":" + names[0] + ")");
@@ -161,6 +157,7 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
     std::string archive = path.substr(0, colon + 4);
     std::string member = path.substr(colon + 5);
     if (!read_archive_member(archive, member, bytes, options.max_bytes, error)) {
+      result.code = ErrorCode::Io;
       result.error = path + ": " + error;
       return result;
     }
@@ -168,6 +165,7 @@ ImportResult import_file(const std::string& path, const ImportOptions& options) 
   }
   detail::FileBytes file;  // its own mapping when large: no hole left in the heap
   if (!detail::read_whole_file(path, file, options.max_bytes, error)) {
+    result.code = ErrorCode::Io;
     result.error = path + ": " + error;
     return result;
   }

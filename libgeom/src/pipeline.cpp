@@ -12,6 +12,7 @@
 #include "geom/adjacency.h"
 #include "geom/extrude.h"
 #include "geom/process.h"
+#include "geom/validate.h"
 
 namespace geom {
 
@@ -79,6 +80,33 @@ Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t tr
   }
   if (!lights.empty()) done("lights");
   return p;
+}
+
+PipelineResult run_pipeline_checked(const std::string& name, PositionSpan positions, const uint32_t* indices,
+                                    size_t index_count, const std::vector<Light>& lights,
+                                    const PipelineOptions& options) {
+  PipelineResult r;
+  static_cast<Status&>(r) = validate_triangles(positions, indices, index_count, name);
+  if (!r.ok) return r;
+  for (const Light& light : lights) {
+    double h[4];
+    light_homogeneous(light, h);
+    const bool finite = std::isfinite(h[0]) && std::isfinite(h[1]) && std::isfinite(h[2]) && std::isfinite(h[3]);
+    if (!finite || (h[0] == 0 && h[1] == 0 && h[2] == 0 && h[3] == 0)) {
+      r.ok = false;
+      r.code = ErrorCode::NonFinite;
+      r.error = name + ": light '" + light.name + "' is not a usable (x, y, z, w): non-finite or all zero";
+      return r;
+    }
+  }
+  try {
+    r.run = run_pipeline(positions, indices, index_count / 3, lights, options);
+  } catch (const std::bad_alloc&) {
+    r = PipelineResult();
+    r.code = ErrorCode::OutOfMemory;
+    r.error = name + ": out of memory in the pipeline";
+  }
+  return r;
 }
 
 std::string silhouette_report(const Pipeline& b) {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "geom/precondition.h"
 #include "live_faces.h"
 #include "vec3.h"
 
@@ -271,13 +272,52 @@ ShadowVolume build(PositionSpan positions, const uint32_t* indices, size_t trian
 
 ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                  const Topology& topology, const FacePlanes& fp, const ShadowVolumeOptions& options) {
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, positions.size());
+  GEOM_PRECONDITION(fp.face_plane.size() == triangle_count,
+                    std::to_string(fp.face_plane.size()) + " face planes, expected " + std::to_string(triangle_count) +
+                        " (compute_face_planes of these triangles)");
   return build(positions, indices, triangle_count, topology, fp, fp.planes, options);
 }
 
 ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                  const Topology& topology, FacePlanes&& fp, const ShadowVolumeOptions& options) {
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, positions.size());
+  GEOM_PRECONDITION(fp.face_plane.size() == triangle_count,
+                    std::to_string(fp.face_plane.size()) + " face planes, expected " + std::to_string(triangle_count) +
+                        " (compute_face_planes of these triangles)");
   std::vector<float> planes = std::move(fp.planes);
   return build(positions, indices, triangle_count, topology, fp, std::move(planes), options);
+}
+
+ShadowVolume build_shadow_volume(SvSide* sides, SvCap* caps, PositionSpan positions, const uint32_t* indices,
+                                 size_t triangle_count, const Topology& topology, const FacePlanes& fp,
+                                 const ShadowVolumeOptions& options) {
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, positions.size());
+  GEOM_PRECONDITION(fp.face_plane.size() == triangle_count,
+                    std::to_string(fp.face_plane.size()) + " face planes, expected " + std::to_string(triangle_count) +
+                        " (compute_face_planes of these triangles)");
+  GEOM_PRECONDITION(!options.sides_out && !options.caps_out,
+                    "options.sides_out or caps_out is set: the records go to "
+                    "`sides` and `caps`");
+  GEOM_PRECONDITION(triangle_count == 0 || (sides && caps),
+                    "null output for " + std::to_string(triangle_count) + " triangles");
+  ShadowVolumeOptions to_out = options;
+  size_t side_count = 0, cap_count = 0;
+  const size_t side_bound = shadow_volume_sides_bound(triangle_count);
+  const size_t cap_bound = shadow_volume_caps_bound(triangle_count);
+  to_out.sides_out = [sides, &side_count, side_bound](const SvSide* records, size_t count) {
+    if (side_count + count > side_bound)
+      detail::precondition_failed("build_shadow_volume", "more sides than shadow_volume_sides_bound");
+    std::memcpy(sides + side_count, records, count * sizeof(SvSide));
+    side_count += count;
+  };
+  to_out.caps_out = [caps, &cap_count, cap_bound](const SvCap* records, size_t count) {
+    if (cap_count + count > cap_bound)
+      detail::precondition_failed("build_shadow_volume", "more caps than shadow_volume_caps_bound");
+    std::memcpy(caps + cap_count, records, count * sizeof(SvCap));
+    cap_count += count;
+  };
+  return build(positions, indices, triangle_count, topology, fp, fp.planes, to_out);
 }
 
 namespace {

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <memory>
 
+#include "geom/precondition.h"
 #include "vec3.h"
 #include "work_count.h"
 
@@ -343,6 +344,10 @@ void label_components(Topology& t, const uint32_t* indices, size_t triangle_coun
 
 Topology build_topology(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                         const TopologyOptions& options) {
+  GEOM_PRECONDITION(triangle_count <= (size_t(0xffffffffu) - 1) / 3,
+                    std::to_string(triangle_count) + " triangles, expected at most " +
+                        std::to_string((size_t(0xffffffffu) - 1) / 3) + " (32-bit face slots)");
+  GEOM_PRECONDITION_INDICES(indices, 3 * triangle_count, positions.size());
   Topology t;
   TopologyStats& s = t.stats;
   const size_t vn = positions.size();

@@ -8,7 +8,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <unordered_map>
+
+#include "geom/precondition.h"
 
 namespace geom {
 namespace {
@@ -29,19 +32,34 @@ inline uint64_t mix(uint64_t h) {
   return h;
 }
 
-void weld_exact(PositionSpan p, WeldResult& r) {
+// Where the welded positions go: a vector that grows (never reallocated: room
+// for every vertex is reserved), or the caller's array of weld_bound floats x 3.
+struct VectorOut {
+  std::vector<float>& v;
+  size_t size() const { return v.size() / 3; }
+  void push(const Float3& p) { v.push_back(p.x), v.push_back(p.y), v.push_back(p.z); }
+  const float* at(uint32_t w) const { return v.data() + 3 * size_t(w); }
+};
+struct ArrayOut {
+  float* v;
+  size_t n = 0;
+  size_t size() const { return n; }
+  void push(const Float3& p) { v[3 * n] = p.x, v[3 * n + 1] = p.y, v[3 * n + 2] = p.z, ++n; }
+  const float* at(uint32_t w) const { return v + 3 * size_t(w); }
+};
+
+template <class Out>
+void weld_exact(PositionSpan p, uint32_t* remap, Out& out) {
   const size_t n = p.size();
   size_t capacity = 16;
   while (capacity < n * 2) capacity *= 2;
   std::vector<uint32_t> table(capacity, 0xffffffffu);  // welded vertex index per slot
-  // At most n welded vertices: one allocation, never grown (its untouched tail
-  // is never paged in). A slot's key is read back from the welded position.
-  r.positions.reserve(3 * n);
+  // A slot's key is read back from the welded position.
   for (size_t i = 0; i < n; ++i) {
     const Float3& v = p[i];
     if (std::isnan(v.x) || std::isnan(v.y) || std::isnan(v.z)) {  // NaN never merges
-      r.remap[i] = uint32_t(r.positions.size() / 3);
-      r.positions.push_back(v.x), r.positions.push_back(v.y), r.positions.push_back(v.z);
+      remap[i] = uint32_t(out.size());
+      out.push(v);
       continue;
     }
     const uint32_t kx = float_key(v.x), ky = float_key(v.y), kz = float_key(v.z);
@@ -50,15 +68,15 @@ void weld_exact(PositionSpan p, WeldResult& r) {
     for (;;) {
       uint32_t w = table[slot];
       if (w == 0xffffffffu) {
-        w = uint32_t(r.positions.size() / 3);
+        w = uint32_t(out.size());
         table[slot] = w;
-        r.positions.push_back(v.x), r.positions.push_back(v.y), r.positions.push_back(v.z);
-        r.remap[i] = w;
+        out.push(v);
+        remap[i] = w;
         break;
       }
-      const float* q = r.positions.data() + 3 * size_t(w);
+      const float* q = out.at(w);
       if (float_key(q[0]) == kx && float_key(q[1]) == ky && float_key(q[2]) == kz) {
-        r.remap[i] = w;
+        remap[i] = w;
         break;
       }
       slot = (slot + 1) & (capacity - 1);
@@ -66,7 +84,8 @@ void weld_exact(PositionSpan p, WeldResult& r) {
   }
 }
 
-void weld_tolerance(PositionSpan p, float tolerance, WeldResult& r) {
+template <class Out>
+void weld_tolerance(PositionSpan p, float tolerance, uint32_t* remap, Out& out) {
   const double cell = double(tolerance);
   const double tol2 = double(tolerance) * double(tolerance);
   auto cell_of = [&](double x) {
@@ -93,36 +112,57 @@ void weld_tolerance(PositionSpan p, float tolerance, WeldResult& r) {
             if (it == head.end()) continue;
             for (uint32_t w = it->second; w != 0xffffffffu; w = next[w]) {
               if (w >= best) continue;
-              const float* q = &r.positions[3 * size_t(w)];
+              const float* q = out.at(w);
               double ex = double(q[0]) - v.x, ey = double(q[1]) - v.y, ez = double(q[2]) - v.z;
               if (ex * ex + ey * ey + ez * ez <= tol2) best = w;
             }
           }
     }
     if (best != 0xffffffffu) {
-      r.remap[i] = best;
+      remap[i] = best;
       continue;
     }
-    uint32_t w = uint32_t(r.positions.size() / 3);
-    r.positions.insert(r.positions.end(), {v.x, v.y, v.z});
+    uint32_t w = uint32_t(out.size());
+    out.push(v);
     auto [it, inserted] = head.try_emplace(cell_hash(cx, cy, cz), w);
     next.push_back(inserted ? 0xffffffffu : it->second);
     it->second = w;
-    r.remap[i] = w;
+    remap[i] = w;
   }
+}
+
+template <class Out>
+void weld_into(Out& out, uint32_t* remap, uint32_t* out_indices, PositionSpan positions, const uint32_t* indices,
+               size_t index_count, float tolerance) {
+  if (tolerance > 0.0f && std::isfinite(tolerance))
+    weld_tolerance(positions, tolerance, remap, out);
+  else
+    weld_exact(positions, remap, out);
+  for (size_t i = 0; i < index_count; ++i) out_indices[i] = remap[indices[i]];
 }
 
 }  // namespace
 
+size_t weld(float* out_positions, uint32_t* out_remap, uint32_t* out_indices, PositionSpan positions,
+            const uint32_t* indices, size_t index_count, float tolerance) {
+  GEOM_PRECONDITION_INDICES(indices, index_count, positions.size());
+  GEOM_PRECONDITION(positions.empty() || (out_positions && out_remap),
+                    "null output with " + std::to_string(positions.size()) + " vertices");
+  ArrayOut out{out_positions};
+  weld_into(out, out_remap, out_indices, positions, indices, index_count, tolerance);
+  return out.size();
+}
+
 WeldResult weld(PositionSpan positions, const uint32_t* indices, size_t index_count, float tolerance) {
+  GEOM_PRECONDITION_INDICES(indices, index_count, positions.size());
   WeldResult r;
   r.remap.resize(positions.size());
-  if (tolerance > 0.0f && std::isfinite(tolerance))
-    weld_tolerance(positions, tolerance, r);
-  else
-    weld_exact(positions, r);
   r.indices.resize(index_count);
-  for (size_t i = 0; i < index_count; ++i) r.indices[i] = r.remap[indices[i]];
+  // At most weld_bound welded vertices: one allocation, never grown (its
+  // untouched tail is never paged in).
+  r.positions.reserve(3 * weld_bound(positions.size()));
+  VectorOut out{r.positions};
+  weld_into(out, r.remap.data(), r.indices.data(), positions, indices, index_count, tolerance);
   return r;
 }
 

@@ -160,10 +160,12 @@ bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
 // soft.cpp, shared by the soft techniques (FrameSettings::light_radius): the
 // widest penumbra's half width in texels over the scene's bounding sphere (the
 // edge quads' reach), on the scene-wide light frame or on a light clip matrix
-// of projection scale `projection` (projection_scale); soft_shade (one pass
-// with soft_light.frag's uniforms) is named in techniques.def.
+// of projection scale `projection` (projection_scale), at most `cap` texels
+// (the edge quads' 32 unless given); soft_shade (one pass with
+// soft_light.frag's uniforms) is named in techniques.def.
 float soft_reach(const Frame& f);
 float soft_reach(const Frame& f, float projection);
+float soft_reach(const Frame& f, float projection, float cap);
 
 // Shared by the map techniques (shadow_map.cpp).
 LightFrame light_frame(const State& s, const FrameLight& light);
@@ -213,6 +215,9 @@ float projection_scale(const glm::mat4& clip);
 // (`faces`: H's polygons; `cube_cone`: geom/focus.h FocusOptions::cube_cone_degrees).
 geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,
                         geom::FocusMethod method, bool faces = false, double cube_cone = 0);
+// The projection a focused matrix drew, for drawn_projection: "lispsm n=3.2",
+// "psm near=0.8", "uniform (fallback: warp_no_gain)".
+std::string describe_focus(geom::FocusMethod requested, const geom::FocusResult& r);
 
 // casters.cpp
 bool build_casters(State& s, std::string& error);  // bakes and uploads every caster, once

@@ -37,17 +37,21 @@
 
 namespace geom {
 
-// Writes 6 * triangle_count indices to `out`. `indices` hold 3 per triangle, each
-// < vertex_count (a caller bug otherwise). Memory: about 12 bytes per triangle
+// The size of the buffer, known in advance: 6 indices per triangle.
+inline size_t adjacency_bound(size_t triangle_count) { return 6 * triangle_count; }
+inline size_t adjacency_index_count(size_t triangle_count) { return adjacency_bound(triangle_count); }
+
+// Writes adjacency_bound(triangle_count) indices to caller-owned `out`.
+// Precondition (asserted with this function's name where NDEBUG is not
+// defined): `indices` hold 3 per triangle, each < vertex_count. Memory: about 12 bytes per triangle
 // of scratch; O(n log n) time whatever the valences. Returns false only if a
 // temporary allocation fails.
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, size_t vertex_count);
 
 // The same buffer from the mesh's edge table (geom/topology.h, built from these
-// indices): no scratch memory, linear in the triangles whatever the valences.
-// Always true.
+// indices, its per-face tables kept: face_edges.size() == 3 * triangle_count,
+// asserted like the above): no scratch memory, linear in the triangles
+// whatever the valences. Always true.
 bool build_adjacency(uint32_t* out, const uint32_t* indices, size_t triangle_count, const Topology& topology);
-
-inline size_t adjacency_index_count(size_t triangle_count) { return 6 * triangle_count; }
 
 }  // namespace geom

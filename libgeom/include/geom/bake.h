@@ -49,7 +49,8 @@
 //
 // Deterministic: the same scene and options give the same sections, byte for
 // byte, on any run and any thread count (no timestamps, pointers or timings).
-// Nothing throws: failures come back in BakeResult::error.
+// Nothing throws: failures come back in BakeResult (geom/status.h: a code and
+// "FILE: what is wrong").
 #pragma once
 #include <string>
 #include <vector>
@@ -89,9 +90,7 @@ struct BakeOptions {
   std::vector<Light> lights;
 };
 
-struct BakeResult {
-  bool ok = false;
-  std::string error;  // "FILE: what is wrong" when !ok
+struct BakeResult : Status {  // ok, code, error: "FILE: what is wrong" when !ok (geom/status.h)
   std::vector<BakedSection> sections;
   Report report;             // the topology report (also the `topology` section's text)
   std::string silhouette;    // the `silhouette` section's JSON text ("" when no silhouette buffer)

@@ -104,7 +104,22 @@ struct EsmOptions {
   std::function<void(const EsmQuad* quads, size_t count)> quads_out;
 };
 
+// Preconditions (asserted with this function's name where NDEBUG is not
+// defined): every index < positions.size(); `topology` and `planes` made from
+// these triangles (planes.face_plane.size() == triangle_count).
 EsmQuads build_esm_quads(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
+                         const Topology& topology, const FacePlanes& planes, const EsmOptions& options = {});
+
+// The most quads build_esm_quads makes for `triangle_count` triangles: at
+// most two per face of each of its three edges (a bevel edge, a boundary or
+// non-manifold face's knife pair), so 6 per triangle.
+inline size_t esm_quads_bound(size_t triangle_count) { return 6 * triangle_count; }
+
+// The same quads written to caller-owned memory, `out`, which holds
+// esm_quads_bound(triangle_count) records; the result carries the origin, the
+// plane table and the stats, its `quads` empty: stats.quads is the count
+// written, byte for byte the vector's. options.quads_out must not be set.
+EsmQuads build_esm_quads(EsmQuad* out, PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                          const Topology& topology, const FacePlanes& planes, const EsmOptions& options = {});
 
 // Octahedral encoding of a unit vector into two snorm16 values, and back (the

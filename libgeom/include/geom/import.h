@@ -5,7 +5,9 @@
 //               KHR_mesh_quantization, sparse accessors, KHR_lights_punctual)
 //   .obj .ply .off .stl
 //   .bsp .md3   Quake 3 (also "ARCHIVE.pk3:path/inside.bsp")
-// Errors are returned, never thrown: ImportResult::error is one line of the form
+// Errors are returned, never thrown, in the library's one style (geom/status.h):
+// ImportResult::code says what kind (Malformed, IndexOutOfRange, NonFinite,
+// TooLarge, OutOfMemory, Io), ImportResult::error is one line of the form
 // "FILE: what is wrong". Non-fatal problems land in Scene::warnings.
 // Safe to call on untrusted input: no crash, no unbounded allocation, no hang.
 #pragma once
@@ -14,6 +16,7 @@
 #include <vector>
 
 #include "geom/scene.h"
+#include "geom/status.h"
 
 namespace geom {
 
@@ -25,9 +28,7 @@ struct ImportOptions {
   bool allow_outside_uris = false;  // glTF: read external buffers outside the asset's folder too
 };
 
-struct ImportResult {
-  bool ok = false;
-  std::string error;  // "FILE: what is wrong" when !ok
+struct ImportResult : Status {  // ok, code, error: "FILE: what is wrong" when !ok
   Scene scene;
 };
 

@@ -25,6 +25,7 @@
 #include "geom/scene.h"
 #include "geom/shadow_volume.h"
 #include "geom/span.h"
+#include "geom/status.h"
 #include "geom/topology.h"
 #include "geom/weld.h"
 
@@ -86,9 +87,26 @@ struct Pipeline {
 // write a buffer no later stage changes and free it (geom/bake.h streams the
 // sections so): a buffer the callback empties must be one no later stage
 // reads (the generic volume is read by "lights"). May throw std::bad_alloc.
+// Preconditions (a caller bug, asserted by each stage with its name where
+// NDEBUG is not defined): every index < positions.size(), at most
+// kMaxTriangles triangles (geom/validate.h); untrusted data:
+// run_pipeline_checked below.
 Pipeline run_pipeline(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                       const std::vector<Light>& lights = {}, const PipelineOptions& options = {},
                       const std::function<void(const char* stage, Pipeline& run)>& after_stage = {});
+
+// The pipeline for untrusted triangles: validate_triangles (geom/validate.h)
+// first (`index_count` need not be a multiple of 3, indices need not be in
+// range: those are errors here), each light checked (non-finite or all zero:
+// NonFinite), then run_pipeline; an allocation that fails is OutOfMemory.
+// Nothing is thrown; on failure `run` is empty and the Status says why, as
+// "NAME: what is wrong".
+struct PipelineResult : Status {
+  Pipeline run;
+};
+PipelineResult run_pipeline_checked(const std::string& name, PositionSpan positions, const uint32_t* indices,
+                                    size_t index_count, const std::vector<Light>& lights = {},
+                                    const PipelineOptions& options = {});
 
 // The report of what each rule saved, one line per rule, for people.
 std::string silhouette_report(const Pipeline& run);

@@ -200,7 +200,10 @@ struct ShadowVolumeOptions {
   std::function<void(const SvCap* records, size_t count)> caps_out;
 };
 
-// The generic, light-independent volume of a welded mesh.
+// The generic, light-independent volume of a welded mesh. Preconditions
+// (asserted with this function's name where NDEBUG is not defined): every
+// index < positions.size(); `topology` and `planes` made from these triangles
+// (planes.face_plane.size() == triangle_count).
 ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices, size_t triangle_count,
                                  const Topology& topology, const FacePlanes& planes,
                                  const ShadowVolumeOptions& options = {});
@@ -225,5 +228,22 @@ ShadowVolume build_shadow_volume(PositionSpan positions, const uint32_t* indices
 // decisions exactly. Returns an empty volume with per_light = false when the
 // light is all zeros.
 ShadowVolume build_light_volume(const ShadowVolume& generic, const float light[4]);
+
+// The most side records build_shadow_volume makes for `triangle_count`
+// triangles: one per face of each edge (a pair record's two copies stand for
+// two faces), so 3 per triangle; and caps: one per triangle.
+inline size_t shadow_volume_sides_bound(size_t triangle_count) { return 3 * triangle_count; }
+inline size_t shadow_volume_caps_bound(size_t triangle_count) { return triangle_count; }
+
+// The generic volume written to caller-owned memory: `sides` holds
+// shadow_volume_sides_bound(triangle_count) records, `caps`
+// shadow_volume_caps_bound(triangle_count); the result carries the origin,
+// the plane table and the stats (stats.sides and stats.caps: the counts
+// written, byte for byte the vector's), its sides, caps and their component
+// ids empty (so it cannot feed build_light_volume). options.sides_out and
+// caps_out must not be set.
+ShadowVolume build_shadow_volume(SvSide* sides, SvCap* caps, PositionSpan positions, const uint32_t* indices,
+                                 size_t triangle_count, const Topology& topology, const FacePlanes& planes,
+                                 const ShadowVolumeOptions& options = {});
 
 }  // namespace geom

@@ -7,6 +7,7 @@
 // that Euclidean distance (greedy, in source order, so the result is
 // deterministic; not transitive chains). The map back to the source is kept.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,7 +22,23 @@ struct WeldResult {
   size_t vertex_count() const { return positions.size() / 3; }
 };
 
-// `indices` (3 per triangle) index `positions`; out-of-range indices are a caller bug.
+// The most welded vertices a weld of `vertex_count` vertices makes (every
+// vertex its own): the caller-owned output below takes 3 * weld_bound floats
+// of positions.
+inline size_t weld_bound(size_t vertex_count) { return vertex_count; }
+
+// `indices` (3 per triangle) index `positions`. Precondition: every index <
+// positions.size() (asserted, with this function's name, where NDEBUG is not
+// defined; untrusted data: geom/validate.h first).
 WeldResult weld(PositionSpan positions, const uint32_t* indices, size_t index_count, float tolerance = 0.0f);
+
+// The same weld into caller-owned memory (meshoptimizer's style): writes the
+// welded positions to `out_positions` (room for 3 * weld_bound(positions.size())
+// floats), the remap to `out_remap` (positions.size()) and the remapped
+// indices to `out_indices` (index_count; it may be `indices` itself), and
+// returns the welded vertex count. The same bytes as weld's vectors. Scratch:
+// a hash table of 2 to 4 uint32 per vertex (exact), a grid (tolerance).
+size_t weld(float* out_positions, uint32_t* out_remap, uint32_t* out_indices, PositionSpan positions,
+            const uint32_t* indices, size_t index_count, float tolerance = 0.0f);
 
 }  // namespace geom
