@@ -18,19 +18,37 @@
 // its front at any texel centre, so they get no acne (a slope-scaled offset
 // uses the stored face's slope, not the receiver's: a round pillar's
 // neighbouring facets fall inside its texels and shadow it).
+// At a concave crease (a wall on a floor, a pillar's foot) the texel's centre
+// may fall on the other face, and where the receiver's plane runs away from
+// the light towards that centre the other face stands in front of it there:
+// acne in a band along every crease, however the map is sized. So the
+// receiver is compared at the nearer of its plane at the texel's centre and
+// its own depth at the sample: min(z, plane(centre)). Where the plane runs
+// towards the light that is the plane, as above; where it runs away, the
+// sample's own depth, and the face at the centre beyond the crease line lies
+// between the two and is pushed back by the depth pass's slope-scaled offset
+// (shadow_map.cpp, factor 2: at least the stored face's own depth change over
+// the 0.71 texel from the sample to the centre), so it is never in front of
+// the sample. A convex caster's neighbouring facets are behind both.
+// (tests/test_gl_bias_crease.cpp: an open corner lit from inside, no shadowed
+// pixel at maps of 64 to 1024 texels; the plane alone shadowed it in 39 of
+// 504 cases.)
 // What remains is rounding, the allowance `depth_allowance`: a few units in
 // the last place of the depth; the rasterizer's snapping of the depth pass's
-// vertices and the sample's own position in the map, a quarter texel times the
-// plane's slope (GL's minimum of 4 sub-pixel bits alone moves the stored plane
-// by up to 1/16 texel). Measured (geombench, 640x480, ssm error_self at 1024
-// / 2048 / 4096): wide-depth 0.107 / 0.263 / 0.134% with 1/16, 0.062 / 0.078
-// / 0.032% with 1/4; 1/64 left the colonnade of
-// tests/test_gl_bias_wide_depth.cpp with error_self rising from 1024 to 2048;
-// and the float rounding of world positions, a fixed world error whose depth
-// error does not shrink as the map grows. The map techniques still draw their
-// depth with a slope-scaled offset (shadow_map.cpp): at a concave crease the
-// texel's centre falls on the other face, in front of the receiver's plane,
-// and the offset pushes that face back.
+// vertices, 1/16 texel times the plane's slope (GL's minimum of 4 sub-pixel
+// bits); and the float rounding of world positions, a fixed world error whose
+// depth error does not shrink as the map grows. A larger slope allowance hides
+// real occluders close to a steep receiver: a quarter texel hid the 1 cm step
+// between a jenga tower's levels at every map size up to 4096 (its error
+// stayed flat), and lit the rippled sphere's self-shadows near the terminator.
+// Measured (geombench, 640x480, 1 frame, error_visible at 512 / 1024 / 2048 /
+// 4096 in %; in brackets the plane alone with a quarter texel): ssm on
+// wide-depth 1.27 / 0.22 / 0.072 / 0.073 (1.29 / 0.83 / 0.31 / 0.14), heavy
+// 0.30 / 0.12 / 0.055 / 0.028 (0.36 / 0.16 / 0.073 / 0.037), quake3 at 256
+// 0.014 (0.052), jenga 0.079 / 0.163 / 0.095 / 0.029 (0.082 / 0.076 / 0.089
+// / 0.042: the step's shadow, a few texels tall on the nearest tower's faces,
+// aliases once the map resolves it); a quarter texel with this rule left
+// heavy at 0.18 at 1024, 1/256 at 0.095.
 // Linked with the lookups that call it; the caller passes the light matrix it
 // used (the face's, for six faces) and the map's size in texels.
 
@@ -70,7 +88,7 @@ vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradi
 // world allowance s.z.
 float depth_allowance(float z, vec3 s) {
   const float ulps = 8.0 * max(abs(z), 1.0 / 1024.0) * (1.0 / 8388608.0);
-  return ulps + (abs(s.x) + abs(s.y)) * (1.0 / 4.0) + s.z;
+  return ulps + (abs(s.x) + abs(s.y)) * (1.0 / 16.0) + s.z;
 }
 
 // The receiver's depth at the centre of the texel `texel` (integer coords),
@@ -78,7 +96,7 @@ float depth_allowance(float z, vec3 s) {
 // depth z and plane slope s (receiver_slope), less the allowance: what the
 // stored depth is compared with (lit where stored >= this).
 float plane_depth(ivec2 texel, vec2 tc, float z, vec3 s) {
-  return z + dot(s.xy, vec2(texel) + 0.5 - tc) - depth_allowance(z, s);
+  return min(z, z + dot(s.xy, vec2(texel) + 0.5 - tc)) - depth_allowance(z, s);
 }
 
 // The depth maps without comparison (texture unit 3, a sampler without

@@ -9,12 +9,23 @@
 // four texels holds no edge, or the receiver is not behind the edges, or a
 // texel's side of its edge disagrees with its depth comparison (crossing
 // shadows), the hard answer stands (the nearest texel's comparison).
+// Each texel's comparison is ssm's receiver-plane test (depth_plane.frag): the
+// receiver's plane carried to the texel's centre against the stored depth,
+// read through the comparison sampler at that exact centre (nearest filter).
 uniform mat4 u_light_matrix;
-uniform sampler2DShadow u_shadow_map;  // comparison sampler, gathered
+uniform sampler2DShadow u_shadow_map;  // comparison sampler, nearest
 uniform sampler2D u_distance_map;      // RG32F: signed distance in texels, edge depth
 
 float penumbra_texels(float zo, float zr);
 float disc_fraction(float x);
+vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradient);
+float plane_depth(ivec2 texel, vec2 tc, float z, vec3 s);
+float compared(float z);
+
+float texel_lit_2d(ivec2 t, vec2 tc, float z, vec3 g, ivec2 size) {
+  const ivec2 c = clamp(t, ivec2(0), size - 1);
+  return texture(u_shadow_map, vec3((vec2(c) + 0.5) / vec2(size), compared(plane_depth(c, tc, z, g))));
+}
 
 float shadow_visibility(vec3 world, vec3 normal) {
   vec4 c = u_light_matrix * vec4(world, 1.0);
@@ -22,11 +33,14 @@ float shadow_visibility(vec3 world, vec3 normal) {
   vec3 p = c.xyz / c.w * 0.5 + 0.5;
   if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
   ivec2 size = textureSize(u_distance_map, 0);
-  vec2 tc = p.xy * vec2(size) - 0.5;
+  const vec3 slope = receiver_slope(u_light_matrix, world, normal, vec2(size), vec3(0.0));
+  const vec2 sample_tc = p.xy * vec2(size);
+  vec2 tc = sample_tc - 0.5;
   ivec2 i = ivec2(floor(tc));
   vec2 f = tc - floor(tc);
-  vec4 g = textureGather(u_shadow_map, p.xy, p.z);  // (0,1) (1,1) (1,0) (0,0)
-  float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
+  vec4 lit;  // footprint order (0,0) (1,0) (0,1) (1,1)
+  for (int k = 0; k < 4; ++k) lit[k] = texel_lit_2d(i + ivec2(k & 1, k >> 1), sample_tc, p.z, slope, size);
+  float nearest = f.y < 0.5 ? (f.x < 0.5 ? lit[0] : lit[1]) : (f.x < 0.5 ? lit[2] : lit[3]);
   float d[4];
   float edge_depth = 0.0;
   for (int k = 0; k < 4; ++k) {
@@ -36,7 +50,6 @@ float shadow_visibility(vec3 world, vec3 normal) {
     edge_depth = max(edge_depth, t.g);
   }
   if (p.z <= edge_depth + 1.0e-4) return nearest;
-  vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
   for (int k = 0; k < 4; ++k)
     if ((d[k] <= 0.0) != (lit[k] > 0.5)) return nearest;
   float dist = mix(mix(d[0], d[1], f.x), mix(d[2], d[3], f.x), f.y);

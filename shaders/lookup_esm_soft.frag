@@ -7,17 +7,19 @@
 // in units of the penumbra's half width, estimated from the receiver's depth
 // behind the nearest texel's edge depth (the occluder), gives the light
 // fraction. On esm's light frames (lookup_faces.frag: a fitted frustum or six
-// cube faces). The hard answer (the nearest texel's comparison) stands where
+// cube faces). Each texel's comparison is ssm's receiver-plane test
+// (depth_plane.frag). The hard answer (the nearest texel's comparison) stands where
 // the nearest texel holds no silhouette or the receiver is not behind its edge
 // (the paper's flags), where a texel of the footprint holds no silhouette, or
 // where a texel's side of its edge disagrees with its own depth comparison
 // (crossing shadows), as in lookup_edsm_soft.frag.
 vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and its clip position
 uniform mat4 u_face_matrix[6];              // lookup_faces.frag's
-uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
 uniform sampler2DArray u_edge_map;          // r kOffset + signed distance (texels, lit side +), b edge depth, a mask
 
 float penumbra_texels_at(mat4 m, vec3 world, float zo, vec2 n, vec2 size);
+vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradient);  // depth_plane.frag
+vec4 footprint_lit(int layer, vec3 p, vec3 g, out ivec2 base, out vec2 f);
 float disc_fraction(float x);
 
 const float kOffset = 1024.0;  // esm_soft_edges.frag
@@ -29,15 +31,15 @@ float shadow_visibility(vec3 world, vec3 normal) {
   vec3 p = c.xyz / c.w * 0.5 + 0.5;
   if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
   ivec2 size = textureSize(u_edge_map, 0).xy;
-  vec2 tc = p.xy * vec2(size) - 0.5;
-  ivec2 i = ivec2(floor(tc));
-  vec2 f = tc - floor(tc);
-  vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(layer)), p.z);  // (0,1) (1,1) (1,0) (0,0)
-  float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
+  // The footprint's comparisons are ssm's receiver-plane test (depth_plane.frag).
+  const vec3 slope = receiver_slope(u_face_matrix[layer], world, normal, vec2(size), vec3(0.0));
+  ivec2 i;
+  vec2 f;
+  const vec4 lit = footprint_lit(layer, p, slope, i, f);  // (0,0) (1,0) (0,1) (1,1)
+  float nearest = f.y < 0.5 ? (f.x < 0.5 ? lit[0] : lit[1]) : (f.x < 0.5 ? lit[2] : lit[3]);
   ivec2 n = clamp(i + ivec2(f.x < 0.5 ? 0 : 1, f.y < 0.5 ? 0 : 1), ivec2(0), size - 1);
   vec4 tn = texelFetch(u_edge_map, ivec3(n, layer), 0);
   if (tn.a == 0.0 || p.z <= tn.b + 1e-4) return nearest;  // no silhouette here, or the receiver is in front of it
-  vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
   float e[4];
   for (int k = 0; k < 4; ++k) {
     vec4 t = texelFetch(u_edge_map, ivec3(clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), layer), 0);

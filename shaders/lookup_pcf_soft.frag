@@ -1,45 +1,64 @@
 #version 450 core
 // The soft baseline: percentage-closer filtering with a kernel as wide as the
-// penumbra (the PCSS recipe, Fernando 2005): a blocker search over the widest
-// penumbra of the frame (4 x 4 depth taps, u_reach texels each side) gives
-// the mean blocker depth; the penumbra's half width of soft_light.frag for it
-// sets the kernel, 6 x 6 bilinear comparison taps spanning it, averaged. The
-// depth of each tap is moved along the receiver's plane (receiver-plane depth
-// bias from the screen-space derivatives), so that wide kernels do not shadow
-// the receiver itself.
-uniform mat4 u_light_matrix;
-uniform sampler2DShadow u_shadow_map;
-uniform sampler2D u_depth_map;  // the same depth map, read without comparison
-uniform float u_reach;          // texels: the widest penumbra of the frame
+// penumbra (the PCSS recipe, Fernando 2005), on pcf's light frames (one
+// fitted frustum or six faces: lookup_faces.frag). A blocker search over the
+// widest penumbra of the frame (u_reach texels around the sample, 25 texels
+// on a golden-angle spiral whose radius grows with the square of the tap's
+// index: dense near the sample, so a thin blocker above it is not stepped
+// over as a coarse grid over a wide reach would) gives the mean blocker depth; the penumbra's half width for it (soft_light.frag,
+// the larger across either axis of the map) sets the kernel, 6 x 6 bilinear
+// taps spanning it, averaged. Every texel is tested as ssm's are
+// (depth_plane.frag): the receiver's own plane carried to the texel's centre
+// against the stored depth, so a kernel wider than the receiver's texel does
+// not shadow the receiver itself at any angle or map size. Outside the face's
+// window: lit. At a seam of six faces the kernel's taps beyond the guard band
+// read the face's clamped border.
+uniform vec2 u_reach;  // texels along the map's x and y: the widest penumbra of the frame
+const int kSearch = 24;  // blocker taps beyond the sample's own texel
+const float kGoldenAngle = 2.39996323;
 
-float penumbra_texels(float zo, float zr);
+vec4 face_clip(vec3 world, out int layer);
+mat4 face_matrix(int layer);
+vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradient);
+float plane_depth(ivec2 texel, vec2 tc, float z, vec3 s);
+float compared(float z);
+float texel_lit(int layer, ivec2 t, vec2 tc, float z, vec3 g);
+float penumbra_texels_at(mat4 m, vec3 world, float zo, vec2 n, vec2 size);
+uniform sampler2DArray u_depth_raw;
 
 float shadow_visibility(vec3 world, vec3 normal) {
-  vec4 c = u_light_matrix * vec4(world, 1.0);
-  vec3 p = c.xyz / c.w * 0.5 + 0.5;
-  // The receiver plane: depth change per texel in the map (d z / d uv).
-  vec2 size = vec2(textureSize(u_shadow_map, 0));
-  vec3 px = dFdx(p), py = dFdy(p);
-  mat2 uv = mat2(px.xy * size, py.xy * size);
-  float det = determinant(uv);
-  vec2 dz = abs(det) > 1e-12 ? inverse(transpose(uv)) * vec2(px.z, py.z) : vec2(0.0);
-  dz = clamp(dz, vec2(-0.01), vec2(0.01));
+  int layer;
+  vec4 c = face_clip(world, layer);
   if (c.w <= 0.0) return 1.0;
-  if (any(lessThan(p, vec3(0.0))) || any(greaterThan(p, vec3(1.0)))) return 1.0;
+  vec3 p = c.xyz / c.w * 0.5 + 0.5;
+  if (any(lessThan(p.xy, vec2(-1e-3))) || any(greaterThan(p.xy, vec2(1.0 + 1e-3)))) return 1.0;
+  const ivec2 size = textureSize(u_depth_raw, 0).xy;
+  const mat4 m = face_matrix(layer);
+  const vec3 g = receiver_slope(m, world, normal, vec2(size), vec3(0.0));
+  const vec2 tc = p.xy * vec2(size);
   float sum = 0.0, n = 0.0;
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) {
-      vec2 o = (vec2(x, y) / 3.0 * 2.0 - 1.0) * u_reach;
-      float z = textureLod(u_depth_map, p.xy + o / size, 0.0).r;
-      if (z < p.z + dot(dz, o) - 2e-4) sum += z, n += 1.0;
-    }
+  for (int k = 0; k <= kSearch; ++k) {  // a spiral from the sample's texel out to u_reach
+    const float r = float(k * k) / float(kSearch * kSearch), a = float(k) * kGoldenAngle;
+    const ivec2 t = clamp(ivec2(floor(tc + r * u_reach * vec2(cos(a), sin(a)))), ivec2(0), size - 1);
+    const float z = texelFetch(u_depth_raw, ivec3(t, layer), 0).r;
+    if (z < compared(plane_depth(t, tc, p.z, g))) sum += z, n += 1.0;
+  }
   if (n == 0.0) return 1.0;
-  float h = clamp(penumbra_texels(sum / n, p.z), 0.5, u_reach);
+  const float zo = sum / n;
+  // The penumbra's half width along each axis of the map: a fitted frustum's
+  // texels need not be square in the world.
+  const vec2 h = clamp(vec2(penumbra_texels_at(m, world, zo, vec2(1.0, 0.0), vec2(size)),
+                            penumbra_texels_at(m, world, zo, vec2(0.0, 1.0), vec2(size))),
+                       vec2(0.5), u_reach);
   float lit = 0.0;
   for (int y = 0; y < 6; ++y)
     for (int x = 0; x < 6; ++x) {
-      vec2 o = ((vec2(x, y) + 0.5) / 6.0 * 2.0 - 1.0) * h;
-      lit += textureLod(u_shadow_map, vec3(p.xy + o / size, p.z + dot(dz, o)), 0.0);
+      const vec2 q = tc + ((vec2(x, y) + 0.5) / 6.0 * 2.0 - 1.0) * h - 0.5;
+      const ivec2 b = ivec2(floor(q));
+      const vec2 f = q - floor(q);
+      const float l00 = texel_lit(layer, b, tc, p.z, g), l10 = texel_lit(layer, b + ivec2(1, 0), tc, p.z, g);
+      const float l01 = texel_lit(layer, b + ivec2(0, 1), tc, p.z, g), l11 = texel_lit(layer, b + ivec2(1, 1), tc, p.z, g);
+      lit += mix(mix(l00, l10, f.x), mix(l01, l11, f.x), f.y);
     }
   return lit / 36.0;
 }

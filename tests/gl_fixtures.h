@@ -150,6 +150,27 @@ inline void random_frame(std::mt19937& rng, glm::vec3 c, float r, LightKind kind
   }
 }
 
+// geombench's colonnade (tools/geombench/scenes.cpp): a ground strip, two rows
+// of pillars every 5 m under a flat beam per pair.
+inline geom::Scene colonnade() {
+  geom::Scene s;
+  add_quad(s, {-8, 0, -205}, {-8, 0, 3}, {8, 0, 3}, {8, 0, -205});
+  tag_caster(s, 0, 0);
+  uint32_t id = 1;
+  for (int i = 0; i < 40; ++i) {
+    const float z = -5.0f * float(i) - 3;
+    for (float x : {-3.0f, 3.0f}) {
+      const size_t first = s.sources.size();
+      add_pipe(s, {x, 0, z}, {x, 4, z}, 0.35f, 16);
+      tag_caster(s, first, id++);
+    }
+    const size_t first = s.sources.size();
+    add_box(s, box_at({0, 4.15f, z}, {3.6f, 0.15f, 0.4f}));
+    tag_caster(s, first, id++);
+  }
+  return s;
+}
+
 // One headless context for the whole test process.
 inline render::Platform* context() {
   static std::unique_ptr<render::Platform> platform = [] {
@@ -220,6 +241,34 @@ inline geom::ShadowError score(render::State& state, const geom::Scene& scene, c
   geom::ShadowReference ref;
   render_and_compare(state, scene, view, light, t, size, &mask, &ref);
   return geom::shadow_error(mask.pixels, ref);
+}
+
+// geombench's wide-depth alley (tools/geombench/scenes.cpp): a ground strip
+// 400 m long along -z and a box pillar every 4 m on alternating sides.
+inline geom::Scene alley() {
+  geom::Scene s;
+  add_quad(s, {-6, 0, -400}, {-6, 0, 2}, {6, 0, 2}, {6, 0, -400});
+  tag_caster(s, 0, 0);
+  for (int i = 1; i <= 100; ++i) {
+    const float z = -4.0f * float(i), x = i % 2 ? -2.5f : 2.5f;
+    const size_t first = s.sources.size();
+    add_box(s, box_at({x, 1.5f, z}, {0.3f, 1.5f, 0.3f}, float(i * 7 % 45)));
+    tag_caster(s, first, uint32_t(i));
+  }
+  return s;
+}
+
+// A random frame in the alley: the camera at eye height near its open end,
+// looking down it (receivers from 0.1 m to hundreds of metres), 160 x 120;
+// a sun anywhere 10 to 70 degrees above the horizon, from any side: across
+// the alley, facing the camera, behind it.
+inline void random_alley_frame(std::mt19937& rng, geom::Camera& view, geom::Light& light) {
+  std::uniform_real_distribution<float> u(-1, 1), u01(0, 1);
+  const glm::vec3 eye(1.5f * u(rng), 1.2f + 1.5f * u01(rng), 2 - 30 * u01(rng));
+  const glm::vec3 target(2 * u(rng), 1.5f * u01(rng), eye.z - 20 - 80 * u01(rng));
+  view = camera(eye, target, 60, 0.1f, 500, 160, 120);
+  const float azimuth = 6.2831853f * u01(rng), elevation = 0.1745f + 1.0472f * u01(rng);
+  light = sun({std::cos(elevation) * std::cos(azimuth), std::sin(elevation), std::cos(elevation) * std::sin(azimuth)});
 }
 
 }  // namespace gltest

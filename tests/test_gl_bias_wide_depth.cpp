@@ -17,27 +17,6 @@ using render::Technique;
 
 namespace {
 
-// geombench's colonnade (tools/geombench/scenes.cpp): a ground strip, two rows
-// of pillars every 5 m under a flat beam per pair.
-geom::Scene colonnade() {
-  geom::Scene s;
-  add_quad(s, {-8, 0, -205}, {-8, 0, 3}, {8, 0, 3}, {8, 0, -205});
-  tag_caster(s, 0, 0);
-  uint32_t id = 1;
-  for (int i = 0; i < 40; ++i) {
-    const float z = -5.0f * float(i) - 3;
-    for (float x : {-3.0f, 3.0f}) {
-      const size_t first = s.sources.size();
-      add_pipe(s, {x, 0, z}, {x, 4, z}, 0.35f, 16);
-      tag_caster(s, first, id++);
-    }
-    const size_t first = s.sources.size();
-    add_box(s, box_at({0, 4.15f, z}, {3.6f, 0.15f, 0.4f}));
-    tag_caster(s, first, id++);
-  }
-  return s;
-}
-
 TEST(GlBiasWideDepth, SelfShadowingFallsAsTheMapGrows) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = colonnade();

@@ -93,9 +93,11 @@ bool fit(const M4& chain, const std::vector<V3>& pts, bool flip_depth, M4& out);
 M4 axis_frame(V3 origin, V3 axis, V3 hint);
 // The uniform (unwarped) matrix of H (fr.h_verts), PSM's and LiSPSM's; the
 // last two false (with the fallback set in `out`) when they cannot warp.
+// `ease` scales their warp distance (PSM's virtual near plane, LiSPSM's n):
+// 1 is the paper's warp, larger is weaker.
 bool uniform_matrix(const Frame& fr, M4& out);
-bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result);
-bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result);
+bool psm_matrix(const Frame& fr, const FocusOptions& opt, double ease, FocusResult& out, M4& result);
+bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, double ease, FocusResult& out, M4& result);
 // The matrix of opt.method with its fallbacks (uniform where the camera is
 // orthographic or the method cannot warp); sets out.method. False only when
 // not even the uniform fit is finite.

@@ -107,7 +107,7 @@ static LightKind kind_of(V4 l, V3 c, double r) {
 // PSM's post-perspective transform (Stamminger and Drettakis 2002, Sect. 4):
 // the camera's projection with its near plane pushed as far as the receivers
 // allow and the virtual camera shifted back until H lies beyond it.
-static M4 psm_post_perspective(const Frame& fr, const FocusOptions& opt, FocusResult& out) {
+static M4 psm_post_perspective(const Frame& fr, const FocusOptions& opt, double ease, FocusResult& out) {
   // Depth ranges along the view axis: of H, and of the receivers R.
   double h_min = HUGE_VAL, h_max = -HUGE_VAL, r_min = HUGE_VAL, r_max = -HUGE_VAL;
   for (V3 p : fr.h_verts) {
@@ -130,7 +130,10 @@ static M4 psm_post_perspective(const Frame& fr, const FocusOptions& opt, FocusRe
                  "the receivers reach the camera's near plane (camera inside the scene): the virtual near plane is "
                  "held at psm_min_near_ratio of the receivers' far depth, which limits the warp");
   // Virtual camera shift (Sect. 4.2): back until H lies beyond the near plane.
+  // `ease` > 1 moves it further back, to ease times that near distance:
+  // a weaker warp, f/n closer to 1 (uniform in the limit).
   double shift = std::fmax(0.0, target - h_min);
+  shift += (ease - 1) * (h_min + shift);
   double n = h_min + shift, f = h_max + shift;
   if (!(f > n * (1 + 1e-9))) f = n * (1 + 1e-6);
   out.camera_shift = shift;
@@ -149,8 +152,8 @@ static M4 psm_post_perspective(const Frame& fr, const FocusOptions& opt, FocusRe
   return proj * back * fr.view;
 }
 
-bool psm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
-  const M4 post = psm_post_perspective(fr, opt, out);
+bool psm_matrix(const Frame& fr, const FocusOptions& opt, double ease, FocusResult& out, M4& result) {
+  const M4 post = psm_post_perspective(fr, opt, ease, out);
   // H and the light in post-perspective space.
   thread_local std::vector<V3> hp;
   hp.clear();
@@ -226,7 +229,7 @@ static bool lispsm_warp(const std::vector<V3>& pts, V3 travel, V3 eye, V3 view, 
   return true;
 }
 
-bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
+bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, double ease, FocusResult& out, M4& result) {
   double r_min = HUGE_VAL;
   for (V3 p : fr.r_verts) r_min = std::fmin(r_min, depth_of(fr, p));
   V3 r_centre = box_centre(fr.r_verts);
@@ -236,7 +239,8 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
   bool warped;
   M4 chain;
   if (fr.directional) {
-    warped = lispsm_warp(fr.h_verts, -fr.towards_light, fr.eye, fr.view_dir, z_near, opt.lispsm_n_scale, warp, n_used);
+    warped = lispsm_warp(fr.h_verts, -fr.towards_light, fr.eye, fr.view_dir, z_near, ease * opt.lispsm_n_scale, warp,
+                         n_used);
     chain = warp;
   } else {
     // In the light's post-perspective space the light is directional (+z).
@@ -258,7 +262,7 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
       double z_centre = depth_of(fr, r_centre);
       V3 eye = pa - view * (z_centre * local);
       warped =
-          length(view) > 0 && lispsm_warp(q, V3(0, 0, 1), eye, view, z_near * local, opt.lispsm_n_scale, warp, n_used);
+          length(view) > 0 && lispsm_warp(q, V3(0, 0, 1), eye, view, z_near * local, ease * opt.lispsm_n_scale, warp, n_used);
     }
     chain = warp * u;
   }
@@ -272,37 +276,79 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
 }
 
 // A warp's gain over the unwarped map: the least, over sample points of R
-// (its vertices, its centre, and the points halfway between them), of the
-// ratio of the two maps' resolutions there, each measured as the length in
-// the map of a small step along the camera's right, up and view directions
-// (summed). A warp trades resolution far away for resolution near the eye
-// (Stamminger and Drettakis 2002, Sect. 3; Wimmer et al. 2004, Sect. 4);
-// where it leaves some receiver much more coarsely resolved than the
-// unwarped map does, it is worse than no warp for that frame.
+// (its vertices, its centre, and the points halfway between them) and over
+// the camera's right, up and view directions, of the ratio of the two maps'
+// resolutions there, each measured as the length in the map of a small step
+// along that direction (directions the unwarped map resolves at under a
+// quarter of its best one at that point, such as a step along the light,
+// are left out). A warp trades resolution far away for resolution near the
+// eye (Stamminger and Drettakis 2002, Sect. 3; Wimmer et al. 2004, Sect. 4),
+// and in one direction for another; where it leaves some receiver much more
+// coarsely resolved than the unwarped map does, in any direction, it is worse
+// than no warp for that frame.
 static double warp_gain(const Frame& fr, const M4& warped, const M4& uniform) {
   V4 r4 = mul(fr.view_inv, 1, 0, 0, 0), u4 = mul(fr.view_inv, 0, 1, 0, 0);
   const V3 dirs[3] = {normalize(V3(r4.x, r4.y, r4.z)), normalize(V3(u4.x, u4.y, u4.z)), fr.view_dir};
-  auto length_at = [&](const M4& m, V3 p, double step) {
+  auto lengths_at = [&](const M4& m, V3 p, double step, double out[3]) {
     V4 a = mul_point(m, p);
-    if (!(a.w > 0)) return 0.0;
-    double sum = 0;
-    for (V3 d : dirs) {
-      V4 b = mul_point(m, p + d * step);
-      if (!(b.w > 0)) return 0.0;
-      sum += std::hypot(b.x / b.w - a.x / a.w, b.y / b.w - a.y / a.w);
+    if (!(a.w > 0)) return false;
+    for (int k = 0; k < 3; ++k) {
+      V4 b = mul_point(m, p + dirs[k] * step);
+      if (!(b.w > 0)) return false;
+      out[k] = std::hypot(b.x / b.w - a.x / a.w, b.y / b.w - a.y / a.w);
     }
-    return sum;
+    return true;
   };
   V3 c = box_centre(fr.r_verts);
   double gain = HUGE_VAL;
   auto at = [&](V3 p) {
-    double step = 1e-4 * std::fmax(depth_of(fr, p), fr.cam_near);
-    double w = length_at(warped, p, step), u = length_at(uniform, p, step);
-    if (u > 0) gain = std::fmin(gain, w / u);
+    double step = 1e-4 * std::fmax(depth_of(fr, p), fr.cam_near), w[3], u[3];
+    if (!lengths_at(uniform, p, step, u)) return;
+    if (!lengths_at(warped, p, step, w)) {
+      gain = 0;
+      return;
+    }
+    double best = std::fmax(u[0], std::fmax(u[1], u[2]));
+    for (int k = 0; k < 3; ++k)
+      if (best > 0 && u[k] >= 0.25 * best) gain = std::fmin(gain, w[k] / u[k]);
   };
   at(c);
   for (V3 p : fr.r_verts) at(p), at((p + c) * 0.5);
   return gain;
+}
+
+// The warp of opt.method at strength `ease` (1: the paper's; larger: weaker),
+// its parameters written to `out`.
+static bool warp_matrix(const Frame& fr, const FocusOptions& opt, double ease, FocusResult& out, M4& result) {
+  return opt.method == FocusMethod::Psm ? psm_matrix(fr, opt, ease, out, result)
+                                        : lispsm_matrix(fr, opt, ease, out, result);
+}
+
+// LiSPSM: the strongest warp, from the paper's own (ease 1) towards none in
+// steps of kEaseStep in its warp distance n, whose gain over the unwarped map
+// is at least opt.min_warp_gain: a warp trades resolution far away for
+// resolution near the eye, and a weaker warp trades less of it (Wimmer et al.
+// 2004, Sect. 4.3: as n grows towards infinity the warp fades to uniform
+// shadow mapping). Not PSM: moving its virtual camera back weakens the warp,
+// but the light's post-perspective direction turns towards the view axis as
+// it does (depth keeps its scale while x and y shrink), so the map does not
+// tend to the unwarped one; on geombench's wide-depth alley the gain of such
+// eased PSM warps peaked at 0.44 (8 times the near distance) and fell to 0.04,
+// and on random frames of the bundled scene they were worse than uniform more
+// often than the paper's warp or none. False when even the weakest fails.
+static bool eased_warp(const Frame& fr, const FocusOptions& opt, const M4& uniform, FocusResult& out, M4& result) {
+  if (opt.method != FocusMethod::Lispsm) return false;
+  constexpr double kEaseStep = 2, kEaseMax = 256;
+  for (double ease = kEaseStep; ease <= kEaseMax; ease *= kEaseStep) {
+    FocusResult trial;
+    M4 m;
+    if (!warp_matrix(fr, opt, ease, trial, m) || !(warp_gain(fr, m, uniform) >= opt.min_warp_gain)) continue;
+    result = m;
+    out.camera_shift = trial.camera_shift, out.psm_near = trial.psm_near, out.psm_far = trial.psm_far;
+    out.psm_light_kind = trial.psm_light_kind, out.lispsm_n = trial.lispsm_n;
+    return true;
+  }
+  return false;
 }
 
 bool method_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M4& result) {
@@ -310,18 +356,16 @@ bool method_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
   if (opt.method != FocusMethod::Uniform && !fr.perspective) {
     set_fallback(out, FocusFallback::OrthographicCamera,
                  "the camera is orthographic: there is no perspective to warp, uniform used");
-  } else if (opt.method == FocusMethod::Psm) {
-    done = psm_matrix(fr, opt, out, result);
-    if (done) out.method = FocusMethod::Psm;
-  } else if (opt.method == FocusMethod::Lispsm) {
-    done = lispsm_matrix(fr, opt, out, result);
-    if (done) out.method = FocusMethod::Lispsm;
+  } else if (opt.method != FocusMethod::Uniform) {
+    done = warp_matrix(fr, opt, 1, out, result);
+    if (done) out.method = opt.method;
   }
   M4 uniform;
   if (done && opt.min_warp_gain > 0 && uniform_matrix(fr, uniform) &&
-      warp_gain(fr, result, uniform) < opt.min_warp_gain) {
+      warp_gain(fr, result, uniform) < opt.min_warp_gain && !eased_warp(fr, opt, uniform, out, result)) {
     set_fallback(out, FocusFallback::WarpNoGain,
-                 "the warp would resolve some visible receiver more coarsely than the unwarped map: uniform used");
+                 "the warp (LiSPSM's eased ones too) would resolve some visible receiver more coarsely than the "
+                 "unwarped map: uniform used");
     out.method = FocusMethod::Uniform;
     result = uniform;
     return true;

@@ -56,6 +56,10 @@ std::string describe_faces(const geom::FocusResult& r) {
 
 }  // namespace
 
+std::string describe_focus(geom::FocusMethod requested, const geom::FocusResult& r) {
+  return describe(requested, r.method, r.fallback, r.psm_near, r.lispsm_n);
+}
+
 geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,
                         geom::FocusMethod method, bool faces, double cube_cone) {
   const double eye[3] = {view.eye.x, view.eye.y, view.eye.z}, target[3] = {view.target.x, view.target.y, view.target.z},
@@ -106,7 +110,7 @@ bool focused_passes(Frame& f) {
   f.face_clip[0] = f.light_frame.clip();
   if (!depth_faces(f, 1, 3.0f, true)) return false;
   f.lookup = "lookup_focused_faces.frag";
-  f.projection = describe(method, r.method, r.fallback, r.psm_near, r.lispsm_n);
+  f.projection = describe_focus(method, r);
   return true;
 }
 

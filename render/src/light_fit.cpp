@@ -1,7 +1,9 @@
 // light_fit.cpp: the light frames of the single-map techniques (ssm, pcf,
 // esm, edsm, sssm, esm-soft), fitted to what the camera sees: geom/focus.h's
 // focus body H (every point that can cast a shadow onto a visible receiver)
-// and its uniform focused matrix (no warp). A point light whose receivers
+// and its uniform focused matrix (no warp); edsm-lispsm's is LiSPSM's warp of
+// the same H (Wimmer et al. 2004), uniform where geom/focus.h finds no warp
+// that helps. A point light whose receivers
 // need more than one frustum can cover well (H wider than kMaxConeDeg from
 // the light, or receivers beside and behind it: FocusResult::needs_cube_map)
 // gets six 90-degree faces instead, each with the near and far planes that
@@ -23,7 +25,9 @@ glm::mat4 to_mat4(const double m[16]) {
 
 int fit_light_frames(Frame& f, float guard) {
   f.timer.begin("focus (CPU)");
-  const geom::FocusResult r = focus(f.s, f.view, f.aspect, f.light, geom::FocusMethod::Uniform, false, kMaxConeDeg);
+  const geom::FocusMethod method =
+      f.t == Technique::EdsmLispsm ? geom::FocusMethod::Lispsm : geom::FocusMethod::Uniform;
+  const geom::FocusResult r = focus(f.s, f.view, f.aspect, f.light, method, false, kMaxConeDeg);
   f.timer.end();
   if (r.fallback == geom::FocusFallback::InvalidInput) {
     f.light_frame = light_frame(f.s, f.light);  // the scene-wide frustum
@@ -32,7 +36,7 @@ int fit_light_frames(Frame& f, float guard) {
   }
   if (!r.cube) {
     f.light_frame.proj = to_mat4(r.matrix), f.light_frame.view = glm::mat4(1);
-    f.projection = "fitted frustum";
+    f.projection = method == geom::FocusMethod::Uniform ? "fitted frustum" : describe_focus(method, r);
     return 1;
   }
   const float widen = 1.0f / (1.0f + 2.0f * guard / float(f.n));  // tan(fov / 2) = 1 + 2 guard / N

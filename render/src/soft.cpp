@@ -4,8 +4,10 @@
 //    edsm_edges.vert and edsm_soft_edges.geom / .frag: each as wide as the
 //    widest penumbra its edge casts, kMaxReach texels at most); the lookup (shaders/lookup_edsm_soft.frag) turns the
 //    signed edge distance into a light fraction with the disc's kernel (soft_light.frag).
-//  - pcf-soft, the baseline: the depth map, then PCF with a kernel as wide as
-//    the penumbra after a blocker search (shaders/lookup_pcf_soft.frag).
+//  - pcf-soft, the baseline: pcf's depth maps (one fitted frustum or six
+//    faces), then PCF with a kernel as wide as the penumbra after a blocker
+//    search, every tap the receiver-plane test of shaders/depth_plane.frag
+//    (shaders/lookup_pcf_soft.frag).
 // Both estimate the penumbra the same way (soft_light.frag) and share its reach,
 // as does esm-soft (esm_soft.cpp).
 #include <algorithm>
@@ -17,6 +19,11 @@ namespace render {
 namespace {
 
 constexpr float kMaxReach = 32;  // texels: the edge quads' and the blocker search's widest reach
+
+// pcf-soft's widest reach: its search and kernel take a fixed number of taps
+// however far they reach, so it is bounded in map widths (kMaxReach texels of
+// a 512 map), not in texels: a finer map must not narrow the penumbra.
+float map_reach(const Frame& f) { return kMaxReach * std::max(1.0f, float(f.n) / 512.0f); }
 
 void set_soft_uniforms(Frame& f, GLuint p) {
   set(p, "u_light_proj", f.light_frame.proj);
@@ -36,7 +43,9 @@ bool shade_scene(Frame& f) {
 
 float soft_reach(const Frame& f) { return soft_reach(f, f.light_frame.proj[0][0]); }
 
-float soft_reach(const Frame& f, float projection) {
+float soft_reach(const Frame& f, float projection) { return soft_reach(f, projection, kMaxReach); }
+
+float soft_reach(const Frame& f, float projection, float cap) {
   const State& s = f.s;
   const float R = std::max(f.fs.light_radius, 0.0f), r = std::max(s.bounds.w, 1e-6f);
   const float scale = projection * float(f.n) * 0.5f;  // NDC per unit -> texels
@@ -48,7 +57,7 @@ float soft_reach(const Frame& f, float projection) {
     const float near_side = std::max(d - r, r * 0.05f), far_side = d + r;
     ndc = R * (far_side - near_side) / (near_side * far_side);
   }
-  return std::clamp(ndc * scale, 2.0f, kMaxReach);
+  return std::clamp(ndc * scale, 2.0f, cap);
 }
 
 bool edsm_soft_passes(Frame& f) {
@@ -65,6 +74,9 @@ bool edsm_soft_passes(Frame& f) {
   set(p, "u_light_radius", f.fs.light_radius);
   adjacency_edge_pass(f, p, "edge distance map", EdgeTarget::Distance);
   finish_map(f);
+  // The lookup reads each texel's comparison at its exact centre (lookup_edsm_soft.frag).
+  glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   f.second_texture = s.edge_map.color;
   f.lookup = "lookup_edsm_soft.frag";
   f.lookup_extra = "soft_light.frag";
@@ -76,23 +88,30 @@ bool soft_shade(Frame& f, GLuint p) {
   return shade_scene(f);
 }
 
+// pcf-soft draws pcf's light frames (light_fit.cpp: a fitted frustum, or six
+// faces for a point light among its receivers) and depth maps.
 bool pcf_soft_passes(Frame& f) {
-  f.light_frame = light_frame(f.s, f.light);
-  if (!depth_map_pass(f, f.light_frame.clip(), 3.5f, false)) return false;  // as pcf's; the lookup adds its plane bias
-  finish_map(f);
-  f.second_texture = f.s.shadow_map.depth;  // read again without comparison (the blocker search)
+  const int faces = fit_light_frames(f, face_guard());
+  if (faces == 1) f.face_clip[0] = f.light_frame.clip();
+  if (!depth_faces(f, faces, kMapSlope, false)) return false;
   f.lookup = "lookup_pcf_soft.frag";
   f.lookup_extra = "soft_light.frag";
   return true;
 }
 
 bool pcf_soft_shade(Frame& f, GLuint p) {
-  set_soft_uniforms(f, p);
-  set(p, "u_depth_map", 1);
-  glBindSampler(1, depth_sampler(f.s));
-  shade_scene(f);
-  glBindSampler(1, 0);
-  return true;
+  // The reach along each axis of the map, at the faces' finest scale: a
+  // fitted frustum's texels need not be square in the world.
+  glm::vec2 scale(0);
+  for (int i = 0; i < f.faces; ++i)
+    if (f.face_clip[i] != glm::mat4(0.0f))
+      for (int a = 0; a < 2; ++a) {
+        const glm::mat4& m = f.face_clip[i];
+        scale[a] = std::max(scale[a], glm::length(glm::vec3(m[0][a], m[1][a], m[2][a])));
+      }
+  set(p, "u_light_radius", f.fs.light_radius);
+  set(p, "u_reach", glm::vec2(soft_reach(f, scale.x, map_reach(f)), soft_reach(f, scale.y, map_reach(f))));
+  return shade_scene(f);
 }
 
 }  // namespace render

@@ -58,6 +58,11 @@ struct State {
   glm::dvec3 origin{0};  // the scene buffer's local frame (its box centre): far coordinates keep float precision
   // Render targets, re-created when their size changes.
   Target camera, shadow_map, cube, edge_map;
+  // The edge map's clear value as a texture of the same size and format
+  // (edge_pass.cpp copies it over the edge map), re-made when either changes.
+  Texture edge_blank;
+  int edge_blank_n = 0;
+  GLenum edge_blank_format = 0;
   Sampler depth_sampler;  // reads a depth texture without comparison
   // esm / edsm: the depth and edge maps of their faces (1 fitted frustum or 6
   // cube faces) as 2D arrays (silhouette_faces.cpp).
@@ -155,10 +160,12 @@ bool inspection_pass(Frame& f, geom::FocusMethod method);  // inspection.cpp
 // soft.cpp, shared by the soft techniques (FrameSettings::light_radius): the
 // widest penumbra's half width in texels over the scene's bounding sphere (the
 // edge quads' reach), on the scene-wide light frame or on a light clip matrix
-// of projection scale `projection` (projection_scale); soft_shade (one pass
-// with soft_light.frag's uniforms) is named in techniques.def.
+// of projection scale `projection` (projection_scale), at most `cap` texels
+// (the edge quads' 32 unless given); soft_shade (one pass with
+// soft_light.frag's uniforms) is named in techniques.def.
 float soft_reach(const Frame& f);
 float soft_reach(const Frame& f, float projection);
+float soft_reach(const Frame& f, float projection, float cap);
 
 // Shared by the map techniques (shadow_map.cpp).
 LightFrame light_frame(const State& s, const FrameLight& light);
@@ -208,6 +215,9 @@ float projection_scale(const glm::mat4& clip);
 // (`faces`: H's polygons; `cube_cone`: geom/focus.h FocusOptions::cube_cone_degrees).
 geom::FocusResult focus(const State& s, const View& view, float aspect, const FrameLight& light,
                         geom::FocusMethod method, bool faces = false, double cube_cone = 0);
+// The projection a focused matrix drew, for drawn_projection: "lispsm n=3.2",
+// "psm near=0.8", "uniform (fallback: warp_no_gain)".
+std::string describe_focus(geom::FocusMethod requested, const geom::FocusResult& r);
 
 // casters.cpp
 bool build_casters(State& s, std::string& error);  // bakes and uploads every caster, once

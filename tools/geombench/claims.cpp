@@ -2,11 +2,19 @@
 #include "claims.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "size_law.h"
 
 namespace geombench {
 namespace {
+
+// Two pixels of a frame: the slack of the per-pixel comparisons (rasterization
+// rules at an outline can differ by a pixel between two correct drawings).
+constexpr double kSlackPixels = 2;
+
+// The wrong pixels behind an error figure (a count over `pixels`, rounded back to it).
+double wrong_pixels(double error, size_t pixels) { return std::round(error * double(pixels)); }
 
 const Row* find(const std::vector<Row>& rows, const std::string& scene, const std::string& t, int size) {
   for (const Row& r : rows)
@@ -26,10 +34,12 @@ void soft_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
     const bool sssm_scene = e.scene == "pipes" || e.scene == "default" || e.scene == "scan";
     if (e.technique == "edsm" && sssm_scene)
       if (const Row* s = find(rows, e.scene, "sssm", e.size)) {
-        const double q = s->error_cast / std::max(e.error_cast, 1e-9);
-        ++n, ok += s->error_cast <= 1.5 * e.error_cast + 1e-12, worst = std::max(worst, q);
-        if (s->error_cast > 1.5 * e.error_cast + 1e-12 && miss.size() < 200)
-          miss += " " + e.scene + "@" + std::to_string(e.size) + " (" + fmt("%.2f", q) + "x)";
+        const double sw = wrong_pixels(s->error_cast, s->cast), ew = wrong_pixels(e.error_cast, e.cast);
+        const bool met = sw <= 1.5 * ew + kSlackPixels;
+        ++n, ok += met, worst = std::max(worst, sw - 1.5 * ew);
+        if (!met && miss.size() < 200)
+          miss += " " + e.scene + "@" + std::to_string(e.size) + " (" + fmt("%.0f", sw) + " vs " + fmt("%.0f", ew) +
+                  " px)";
       }
     if (e.technique == "esm-soft")
       if (const Row* p = find(rows, e.scene, "pcf-soft", e.size); p && (e.scene == "pipes" || e.scene == "default"))
@@ -50,8 +60,9 @@ void soft_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
   if (n)
     out.push_back(verdict(ok == n) +
                   ": Sen et al. 2003, Sect. 5 (silhouette maps as exact as the edges they store): sssm error_cast "
-                  "<= 1.5x edsm's on pipes, default, scan: " +
-                  std::to_string(ok) + " of " + std::to_string(n) + ", worst " + fmt("%.2f", worst) + "x" +
+                  "<= 1.5x edsm's + 2 pixels on pipes, default, scan: " +
+                  std::to_string(ok) + " of " + std::to_string(n) + ", worst " + fmt("%.0f", worst) +
+                  " px over 1.5x edsm's" +
                   (miss.empty() ? "" : "; missed:" + miss));
   if (nf)
     out.push_back(verdict(okf == nf) +
@@ -136,35 +147,83 @@ void map_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
       const Row* s = find(rows, e.scene, "ssm", e.size);
       if (!s) continue;
       ++n;
-      const bool met = e.error_visible <= s->error_visible + 1e-12;
+      const double wrong = wrong_pixels(e.error_visible, e.visible), ssm_wrong = wrong_pixels(s->error_visible, s->visible);
+      const bool met = wrong <= ssm_wrong + kSlackPixels;
       ok += met;
       if (!met && misses.size() < 300)
-        misses += " " + e.scene + "@" + std::to_string(e.size) + " (" + fmt("%.5f", e.error_visible) + " vs " +
-                  fmt("%.5f", s->error_visible) + ")";
+        misses += " " + e.scene + "@" + std::to_string(e.size) + " (" + fmt("%.0f", wrong) + " vs " +
+                  fmt("%.0f", ssm_wrong) + " px)";
     }
     if (n)
       out.push_back(verdict(ok == n) +
                     ": Kenzel 2013, Sect. 5.1; Bujnak 2004, Sect. 3 (the edges refine the depth test): " + t +
-                    "@N error_visible <= ssm@N on every scene: " + std::to_string(ok) + " of " + std::to_string(n) +
-                    (misses.empty() ? "" : "; missed:" + misses));
+                    "@N wrong visible pixels <= ssm@N's + 2 on every scene: " + std::to_string(ok) + " of " +
+                    std::to_string(n) + (misses.empty() ? "" : "; missed:" + misses));
   }
-  for (const char* t : {"esm", "esm-exact", "edsm"}) {  // cost at most 1.5x ssm
-    double worst = 0, sum = 0;
-    int n = 0;
+  // Cost against ssm's shadow passes, median over the cells (this project's
+  // reading of "a low additional cost": at most 2x for edsm and sssm, whose
+  // edge maps are drawn in two passes, 1.5x for esm and esm-exact).
+  struct CostGoal {
+    const char* technique;
+    double bound;
+  };
+  for (const CostGoal g : {CostGoal{"esm", 1.5}, CostGoal{"esm-exact", 1.5}, CostGoal{"edsm", 2}, CostGoal{"sssm", 2}}) {
+    std::vector<double> q;
     std::string kind;
     for (const Row& r : rows) {
-      if (r.technique != t) continue;
+      if (r.technique != g.technique) continue;
       const Row* s = find(rows, r.scene, "ssm", r.size);
       if (!s || s->time_ms <= 0) continue;
-      const double q = r.time_ms / s->time_ms;
-      worst = std::max(worst, q), sum += q, ++n, kind = r.time_kind;
+      q.push_back(r.time_ms / s->time_ms), kind = r.time_kind;
+    }
+    if (q.empty()) continue;
+    std::sort(q.begin(), q.end());
+    const double median = q.size() % 2 ? q[q.size() / 2] : 0.5 * (q[q.size() / 2 - 1] + q[q.size() / 2]);
+    out.push_back(verdict(median <= g.bound) +
+                  ": Kenzel 2013, Sect. 5.1 (a low additional cost over shadow mapping): " + g.technique +
+                  " time <= " + fmt("%g", g.bound) + "x ssm's in median (" + kind + " time" +
+                  (kind == "wall" ? ", software rasterizer: the claim is about GPUs" : "") + "): median " +
+                  fmt("%.2f", median) + "x, worst " + fmt("%.2f", q.back()) + "x over " + std::to_string(q.size()) +
+                  " cells");
+  }
+}
+
+// This project's goals beside the papers' claims: the warped maps never worse
+// than the uniform map they warp (1.1x its wrong pixels + 2, every scene and
+// size), and no map technique shadowing its own lit faces (error_self at most
+// 0.2% at 1024 texels and above).
+void goal_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
+  auto verdict = [](bool ok) { return std::string(ok ? "holds" : "fails"); };
+  for (const char* t : {"psm", "lispsm"}) {
+    int n = 0, ok = 0;
+    std::string misses;
+    for (const Row& r : rows) {
+      const Row* u = r.technique == t ? find(rows, r.scene, "uniform", r.size) : nullptr;
+      if (!u) continue;
+      const double w = wrong_pixels(r.error_visible, r.visible), uw = wrong_pixels(u->error_visible, u->visible);
+      const bool met = w <= 1.1 * uw + kSlackPixels;
+      ++n, ok += met;
+      if (!met && misses.size() < 300)
+        misses += " " + r.scene + "@" + std::to_string(r.size) + " (" + fmt("%.0f", w) + " vs " + fmt("%.0f", uw) +
+                  " px)";
     }
     if (n)
-      out.push_back(verdict(worst <= 1.5) + ": Kenzel 2013, Sect. 5.1 (a low additional cost over shadow mapping): " +
-                    t + " time <= 1.5x ssm (" + kind + " time" +
-                    (kind == "wall" ? ", software rasterizer: the claim is about GPUs" : "") + "): mean " +
-                    fmt("%.2f", sum / n) + "x, worst " + fmt("%.2f", worst) + "x");
+      out.push_back(verdict(ok == n) + ": (this project's goal) " + t +
+                    " wrong visible pixels <= 1.1x uniform's + 2 on every scene and size: " + std::to_string(ok) +
+                    " of " + std::to_string(n) + (misses.empty() ? "" : "; missed:" + misses));
   }
+  int n = 0, ok = 0;
+  std::string misses;
+  for (const Row& r : rows) {
+    if (r.size < 1024 || r.error_self < 0) continue;
+    const bool met = r.error_self <= 0.002;
+    ++n, ok += met;
+    if (!met && misses.size() < 400)
+      misses += " " + r.technique + " " + r.scene + "@" + std::to_string(r.size) + " (" + fmt("%.3f", 100 * r.error_self) + "%)";
+  }
+  if (n)
+    out.push_back(verdict(ok == n) + ": (this project's goal) every map technique error_self <= 0.2% at 1024 and above: " +
+                  std::to_string(ok) + " of " + std::to_string(n) + (misses.empty() ? "" : "; missed:" + misses));
 }
 
 // The warped maps against uniform on wide-depth, and the bake against meshoptimizer.
@@ -203,9 +262,13 @@ std::vector<std::string> claims(const std::vector<Row>& rows, const std::set<std
   cast_claims(rows, out);
   map_claims(rows, out);
   warp_bake_claims(rows, bake, out);
+  goal_claims(rows, out);
   soft_claims(rows, out);
   std::vector<geombench::SizePoint> points;  // error falls as the map grows (size_law.h)
-  for (const Row& r : rows) points.push_back({r.scene, r.technique, r.size, r.error_visible});
+  for (const Row& r : rows) {
+    const bool soft = r.technique.size() > 5 && r.technique.compare(r.technique.size() - 5, 5, "-soft") == 0;
+    points.push_back({r.scene, r.technique, r.size, soft ? r.error_fraction : r.error_visible, soft});
+  }
   for (std::string& l : geombench::size_law_lines(points)) out.push_back(std::move(l));
   return out;
 }
