@@ -4,10 +4,13 @@
 // channel to store the distance to more than one edge"; the map is
 // shaders/edsm_edges.frag: per texel the two nearest edges as lines, distance
 // from the texel's centre and normal angle, with their light depths).
-// The depth comparisons of the 2 x 2 texel footprint (textureGather on the
-// comparison sampler, at the sample's depth, against the map drawn with the
-// slope-scaled offset the edge pass needs) say whether the sample is fully
-// lit, fully shadowed or near a silhouette (the comparisons differ). There:
+// Where ssm's own comparisons of the 2 x 2 texel footprint (depth_plane.frag:
+// the receiver's plane at each texel's centre; ssm's nearest texel is one of
+// the four) agree, their answer is ssm's and stands. Otherwise the depth
+// comparisons of the footprint at the sample's depth (textureGather on the
+// comparison sampler, against the map drawn with the slope-scaled offset the
+// edge pass needs) say whether the sample is fully lit, fully shadowed or near
+// a silhouette (the comparisons differ). There:
 //  1. Only edges in front of the receiver take part (kInFront): an edge at the
 //     receiver's depth is its own outline and casts nothing on it. No such
 //     edge in any of the four texels: no occluder's silhouette crosses the
@@ -46,7 +49,14 @@
 // 0.120 / 0.055 / 0.006. (Those allowed one texel disagreeing with the
 // line, in step 2 taking the plane through the other three, and voted in
 // step 4; allowing them broke the law of never being worse than ssm on
-// random frames at maps of 40-96 texels.) Tried and not kept: a strip test for fully lit or
+// random frames at maps of 40-96 texels.) ssm's footprint first (geombench,
+// 640x480, 1 frame, wrong pixels at 256 / 512 / 1024; ssm in brackets): jenga
+// 655 / 191 / 181 -> 235 / 168 / 181 (226 / 173 / 356); scan 515 / 193 / 62 ->
+// 590 / 232 / 91 (652 / 251 / 108); heavy 1608 / 385 / 124 -> 1922 / 565 / 214
+// (2038 / 684 / 276); the random frames of tests/test_gl_edge_map_law.cpp within
+// ssm + 2 pixels on 359 of 360 (354 without). The whole footprint from ssm's
+// comparisons, the gather dropped, put heavy and scan above ssm (heavy@1024 282
+// against 276). Tried and not kept: a strip test for fully lit or
 // fully shadowed footprints (a thin occluder or gap between texel centres:
 // jenga 0.125 against 0.120); kInFront 1e-4 / 1e-5 / 0 (scan@2048
 // error_visible 0.028 / 0.011 / 0.003%, jenga the same; 2e-6 gives 0.005%).
@@ -54,6 +64,7 @@ vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and i
 mat4 face_matrix(int layer);
 vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradient);  // depth_plane.frag
 float nearest_lit(int layer, vec3 p, vec3 g);
+vec4 footprint_lit(int layer, vec3 p, vec3 g, out ivec2 base, out vec2 f);
 uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
 uniform usampler2DArray u_distance_map;  // RGBA32UI: (line, depth bits) x 2 per texel
 
@@ -74,6 +85,10 @@ float shadow_visibility(vec3 world, vec3 normal) {
   // The comparisons of the 2 x 2 footprint (gather order: (0,1) (1,1) (1,0) (0,0)).
   vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(layer)), p.z);
   const vec4 lit = vec4(g.w, g.z, g.x, g.y);  // footprint order (0,0) (1,0) (0,1) (1,1)
+  ivec2 plane_base;
+  vec2 plane_f;
+  const vec4 plane_lit = footprint_lit(layer, p, slope, plane_base, plane_f);  // ssm's comparisons
+  if (all(equal(plane_lit, vec4(plane_lit.x)))) return plane_lit.x;  // ssm's answer, the four agreeing
   if (all(equal(lit, vec4(lit.x)))) return lit.x;  // fully lit or fully shadowed
   const float ssm = nearest_lit(layer, p, slope);           // ssm's test, where the edges cannot decide
   // The lines in front of the receiver, evaluated at the four texel centres

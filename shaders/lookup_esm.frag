@@ -14,19 +14,24 @@
 // 2e-2 / 5e-2: jenga 2.19 / 1.31 / 1.30 / 1.30% and 0.356 / - / 0.152 / 0.152%
 // (ssm 1.68 / 0.203%), duelling@512 error_visible 1.26 / - / 0.122 / 0.122%
 // (ssm 0.113%); pipes, scan and default unchanged; 1e-1 as 5e-2.
-// Where the 2 x 2 footprint is not wholly shadowed, the nearest texel's depth
-// flag compares 3e-5 * cos(incidence) of window depth nearer the light (as
-// esm-exact's fallbacks, lookup_esm_exact.frag): the default scene's block
-// faces are lit up to the joint under the block above, whose depth their
-// texels hold within a few 1e-5. error_cast pixels at 512 / 2048 (1 frame):
-// default 33 / 12 -> 3 / 0 (ssm 1 / 0), quake3 46 / 15 -> 3 / 0 (ssm 16 / 0),
-// scan 1 / 0 unchanged; the same bias on every footprint leaked light at the
-// bunny's contact with the ground (scan@512 36 pixels). esm-exact, the boundary on
-// the true edge, has its own pass and lookup (lookup_esm_exact.frag).
+// The depth test is ssm's (depth_plane.frag: the receiver's plane against the
+// nearest texel at its centre), where the paper biases the depth ("depth
+// biasing and read values one shadow map unit above rendered surface",
+// Sect. 6.1): a fixed bias shadowed faces steep to the light whose texels hold
+// their lit neighbour (the pillars' faces of wide-depth and colonnade, wholly
+// dark), and the paper leaves the bias to the implementation. geombench
+// (640x480, 1 frame) error_self at 512 / 1024 / 2048 / 4096 in %, a comparison
+// at the sample's depth 3e-5 * cos(incidence) nearer the light against this
+// test: wide-depth 1.93 / 6.62 / 1.41 / 0.86 -> 0.15 / 0.10 / 0.024 / 0;
+// colonnade 7.41 / 5.56 / 2.86 / 1.08 -> 0.090 / 0.047 / 0.016 / 0.003;
+// jenga error_cast 1.30 / 0.50 / 0.15 / 0.061 -> ssm's 0.079 / 0.16 / 0.095 /
+// 0.029 (its blocks lie within the z-bias of the edge above: no dilation).
+// esm-exact, the boundary on the true edge, has its own pass and lookup (lookup_esm_exact.frag).
 vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and its clip position
-uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
+mat4 face_matrix(int layer);
+vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradient);  // depth_plane.frag
+float nearest_lit(int layer, vec3 p, vec3 g);
 uniform sampler2DArray u_edge_map;          // r encoded distance, b edge depth, a mask
-uniform vec4 u_light;                       // shade.frag's light: for the receiver's facing
 
 float shadow_visibility(vec3 world, vec3 normal) {
   int layer;
@@ -38,18 +43,12 @@ float shadow_visibility(vec3 world, vec3 normal) {
   vec2 tc = p.xy * vec2(size) - 0.5;
   ivec2 i = ivec2(floor(tc));
   vec2 f = tc - floor(tc);
-  // The comparisons of the 2 x 2 footprint (gather order: (0,1) (1,1) (1,0) (0,0)).
-  vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(layer)), p.z);
-  float nearest = f.y < 0.5 ? (f.x < 0.5 ? g.w : g.z) : (f.x < 0.5 ? g.x : g.y);
-  // 000 Sect. 3.2: point-filtered depth and edge depth as flags, the bilinear
-  // edge distance through the transfer function. ESM only adds shadow: the
-  // depth test's shadow stands; a lit receiver behind the nearest texel's edge
-  // depth is shadowed within 0.707 texel outside the edge.
-  if (all(equal(g, vec4(0.0)))) return 0.0;
-  float facing = max(dot(normalize(normal), normalize(u_light.xyz - world * u_light.w)), 0.0);
-  vec4 gb = textureGather(u_shadow_map, vec3(p.xy, float(layer)), p.z - 3e-5 * facing);
-  nearest = f.y < 0.5 ? (f.x < 0.5 ? gb.w : gb.z) : (f.x < 0.5 ? gb.x : gb.y);
-  if (nearest < 0.5) return 0.0;
+  // Bujnak 2004, Sect. 3.2: point-filtered depth and edge depth as flags, the
+  // bilinear edge distance through the transfer function. ESM only adds
+  // shadow: the depth test's shadow stands; a lit receiver behind the nearest
+  // texel's edge depth is shadowed within 0.707 texel outside the edge.
+  const vec3 slope = receiver_slope(face_matrix(layer), world, normal, vec2(size), vec3(0.0));
+  if (nearest_lit(layer, p, slope) < 0.5) return 0.0;
   ivec2 n = clamp(i + ivec2(f.x < 0.5 ? 0 : 1, f.y < 0.5 ? 0 : 1), ivec2(0), size - 1);
   vec4 tn = texelFetch(u_edge_map, ivec3(n, layer), 0);
   if (tn.a == 0.0 || p.z <= tn.b + 2e-2) return 1.0;  // no silhouette here, or the receiver is in front of it

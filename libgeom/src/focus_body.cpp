@@ -203,7 +203,7 @@ static bool clip_one(Polytope& p, const Plane& h, double eps, Polytope& scratch)
   for (uint32_t n : p.sizes) {
     size_t start = scratch.pts.size();
     for (uint32_t i = 0; i < n; ++i) {
-      const size_t ia = base + i, ib = base + (i + 1) % n;
+      const size_t ia = base + i, ib = i + 1 == n ? base : ia + 1;  // the next corner, round the polygon
       V3 a = p.pts[ia], b = p.pts[ib];
       double da = dist[ia], db = dist[ib];
       if (da >= -eps) scratch.pts.push_back(a);
@@ -277,6 +277,7 @@ bool hull_polytope(const V3* points, size_t count, Polytope& out) {
     in.clear();
     verts.clear();
     tris.clear();
+    in.reserve(count);
     for (size_t i = 0; i < count; ++i) in.emplace_back(points[i].x, points[i].y, points[i].z);
     if (!cgal_hull(in, verts, tris)) return false;
     for (const auto& t : tris) {
@@ -319,21 +320,29 @@ void unique_vertices(const Polytope& p, double eps, std::vector<V3>& out) {
 static bool index_clipped(const Polytope& p, double eps, std::vector<double>& xyz, std::vector<uint32_t>& sizes,
                           std::vector<uint32_t>& indices) {
   thread_local std::vector<V3> verts;
+  thread_local std::vector<std::pair<double, uint32_t>> by_x;  // verts listed by x
   thread_local std::vector<std::pair<uint32_t, uint32_t>> directed;
   verts.clear();
+  by_x.clear();
   directed.clear();
   size_t base = 0;
   for (uint32_t n : p.sizes) {
     size_t start = indices.size();
     for (uint32_t i = 0; i < n; ++i) {
       V3 q = p.pts[base + i];
+      // The first vertex kept within eps of q in every coordinate (the least
+      // id): only those whose x lies near enough (the window widened by more
+      // than x's rounding, as in unique_vertices) are compared, the answer of
+      // comparing with every kept vertex in order.
       uint32_t id = uint32_t(verts.size());
-      for (uint32_t k = 0; k < verts.size(); ++k)
-        if (max_abs(verts[k] - q) <= eps) {
-          id = k;
-          break;
-        }
-      if (id == verts.size()) verts.push_back(q);
+      const double slack = 2 * eps + 1e-12 * std::fabs(q.x);
+      auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(q.x - slack, uint32_t(0)));
+      for (; it != by_x.end() && it->first <= q.x + slack; ++it)
+        if (it->second < id && max_abs(verts[it->second] - q) <= eps) id = it->second;
+      if (id == verts.size()) {
+        by_x.insert(std::upper_bound(by_x.begin(), by_x.end(), std::make_pair(q.x, id)), std::make_pair(q.x, id));
+        verts.push_back(q);
+      }
       if (indices.size() > start && (indices.back() == id || indices[start] == id)) continue;
       indices.push_back(id);
     }
@@ -341,13 +350,15 @@ static bool index_clipped(const Polytope& p, double eps, std::vector<double>& xy
     size_t m = indices.size() - start;
     if (m < 3) return false;
     V3 area(0, 0, 0);
-    for (size_t i = 0; i < m; ++i)
-      area = area + cross(verts[indices[start + i]] - verts[indices[start]],
-                          verts[indices[start + (i + 1) % m]] - verts[indices[start]]);
     double perimeter = 0;
-    for (size_t i = 0; i < m; ++i) perimeter += length(verts[indices[start + (i + 1) % m]] - verts[indices[start + i]]);
+    const V3 first = verts[indices[start]];
+    for (size_t i = 0; i < m; ++i) {
+      const uint32_t a = indices[start + i], b = indices[i + 1 == m ? start : start + i + 1];
+      area = area + cross(verts[a] - first, verts[b] - first);
+      perimeter += length(verts[b] - verts[a]);
+      directed.push_back({a, b});
+    }
     if (!(0.5 * length(area) > 8 * eps * perimeter)) return false;  // a sliver: no clean face
-    for (size_t i = 0; i < m; ++i) directed.push_back({indices[start + i], indices[start + (i + 1) % m]});
     sizes.push_back(uint32_t(m));
   }
   std::sort(directed.begin(), directed.end());
@@ -529,6 +540,7 @@ bool hull_planes(PositionSpan points, std::vector<Plane>& out) {
   out.clear();
   thread_local std::vector<V3> pts;
   pts.clear();
+  pts.reserve(points.size());  // exactly: a bake's hull copies every vertex
   for (size_t i = 0; i < points.size(); ++i) {
     const Float3& f = points[i];
     V3 q(f.x, f.y, f.z);
