@@ -5,7 +5,7 @@
 //    alley under suns from every side, random_alley_frame) it is at most the
 //    smaller of edsm's and lispsm's error: within 5 pixels on geombench's
 //    view at 256 to 1024 texels; x1.1 + 2 pixels on at least 90% of 200 random
-//    frames (185-186 measured), with a mean at most half the smaller mean;
+//    frames (194 measured), with a mean at most half the smaller mean;
 //  - on random frames of the bundled scene for each light type (point, spot,
 //    directional; random_frame), it is never worse than lispsm's error x1.1
 //    + 2 pixels on at least 95% of 200 frames.
