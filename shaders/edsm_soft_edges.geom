@@ -1,8 +1,8 @@
 #version 450 core
 // edsm-soft's distance-map pass (soft.cpp): edsm_edges.geom's silhouette
 // detection and edge quads, each quad as wide as the widest penumbra its edge
-// can cast (soft_light.frag's estimate for a receiver at the light frustum's
-// far plane behind the edge's nearer end), at least u_half_width texels, at
+// can cast (soft_light.frag's estimate for a receiver at the light frame's
+// far side behind the edge's nearer end), at least u_half_width texels, at
 // most u_max_half_width. The rest as in edsm_edges.geom:
 // Edge distance shadow map (Kenzel 2013), distance-map pass.
 // Silhouette detection (Sect. 3.2.1): the winding of a projected triangle is the
@@ -23,8 +23,17 @@ in vec4 g_clip[];
 uniform float u_map_size;    // texels per side
 uniform float u_half_width;      // texels: the narrowest quad
 uniform float u_max_half_width;  // texels: the widest quad
-uniform mat4 u_light_proj;       // the light's projection (depths)
 uniform float u_light_radius;
+// The widest penumbra an edge casts, for a receiver at the far side of the
+// light's frame behind it (soft.cpp): the light (input coordinates,
+// homogeneous; w 0 towards the sun), that far side's distance from a point
+// light or depth along the sun's rays, and the map's texels per unit across
+// the light at unit distance (a point light) or per unit (the sun). Any
+// light clip matrix: the scene's frustum or a face of six.
+uniform vec4 u_light;
+uniform float u_far;
+uniform float u_texel_scale;
+in vec3 g_world[];
 flat out float f_half_width;     // this edge's quad, texels
 flat out vec3 f_line;        // NDC line, |(a, b)| = 1, positive inside the occluder
 flat out vec4 f_segment;     // NDC end points a.xy, b.xy
@@ -32,23 +41,21 @@ flat out vec2 f_depth;       // NDC depth at a and b
 
 float winding(vec4 a, vec4 b, vec4 c) { return determinant(mat3(a.xyw, b.xyw, c.xyw)); }
 
-float light_distance(vec4 clip) {  // along the light's axis
-  if (u_light_proj[3][3] == 1.0) return (u_light_proj[3][2] - clip.z / clip.w) / u_light_proj[2][2];
-  return clip.w;
+float reach(vec3 a, vec3 b) {
+  float texels;
+  if (u_light.w != 0.0) {
+    vec3 L = u_light.xyz / u_light.w;
+    float d_o = max(min(distance(a, L), distance(b, L)), 1e-6);
+    texels = u_light_radius * max(u_far - d_o, 0.0) / (d_o * max(u_far, 1e-6)) * u_texel_scale;
+  } else {
+    vec3 ray = -normalize(u_light.xyz);
+    texels = tan(u_light_radius) * max(u_far - min(dot(a, ray), dot(b, ray)), 0.0) * u_texel_scale;
+  }
+  return clamp(texels, u_half_width, u_max_half_width);
 }
 
-float reach(vec4 a, vec4 b) {
-  bool ortho = u_light_proj[3][3] == 1.0;
-  float far_d = ortho ? (u_light_proj[3][2] - 1.0) / u_light_proj[2][2] : u_light_proj[3][2] / (u_light_proj[2][2] + 1.0);
-  float d_o = max(min(light_distance(a), light_distance(b)), 1e-6);
-  float behind = max(far_d - d_o, 0.0);
-  float ndc = ortho ? tan(u_light_radius) * behind * u_light_proj[0][0]
-                    : u_light_radius * behind / (d_o * far_d) * u_light_proj[0][0];
-  return clamp(ndc * u_map_size * 0.5, u_half_width, u_max_half_width);
-}
-
-void emit_edge(vec4 a, vec4 b, float inside) {
-  f_half_width = reach(a, b);
+void emit_edge(vec4 a, vec4 b, vec3 wa, vec3 wb, float inside) {
+  f_half_width = reach(wa, wb);
   vec2 A = a.xy / a.w, B = b.xy / b.w;
   vec2 ab = B - A;
   float len = length(ab);
@@ -75,9 +82,9 @@ void main() {
     vec4 a = g_clip[2 * e], x = g_clip[2 * e + 1], b = g_clip[(2 * e + 2) % 6];
     bool boundary = x == g_clip[(2 * e + 4) % 6];
     if (own > 0.0) {
-      if (winding(a, x, b) <= 0.0) emit_edge(a, b, 1.0);
+      if (winding(a, x, b) <= 0.0) emit_edge(a, b, g_world[2 * e], g_world[(2 * e + 2) % 6], 1.0);
     } else if (boundary) {
-      emit_edge(a, b, -1.0);
+      emit_edge(a, b, g_world[2 * e], g_world[(2 * e + 2) % 6], -1.0);
     }
   }
 }

@@ -60,26 +60,63 @@ float soft_reach(const Frame& f, float projection, float cap) {
   return std::clamp(ndc * scale, 2.0f, cap);
 }
 
-bool edsm_soft_passes(Frame& f) {
-  State& s = f.s;
-  f.light_frame = light_frame(s, f.light);
-  const glm::mat4 light_clip = f.light_frame.clip();
+namespace {
+
+// edsm-soft's edge pass on the light clip matrix `light_clip` (a face of six,
+// or the scene's frustum), each quad as wide as its edge's widest penumbra
+// there: `far_side` is that frame's far side, a distance from a point light or
+// a depth along the sun's rays (edsm_soft_edges.geom).
+bool edsm_soft_edges(Frame& f, const glm::mat4& light_clip, float far_side, float cap) {
   GLuint p =
-      edge_program(f, light_clip, 1.5f, GL_RG32F, {"edsm_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
+      edge_program(f, light_clip, 1.5f, GL_RG32F, {"edsm_soft_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
   if (!p) return false;
   set(p, "u_matrix", light_clip);
   set(p, "u_half_width", 2.0f);  // the hard edsm's
-  set(p, "u_max_half_width", soft_reach(f));
-  set(p, "u_light_proj", f.light_frame.proj);
+  set(p, "u_max_half_width", soft_reach(f, projection_scale(light_clip), cap));
+  set(p, "u_light", f.light.position);  // input coordinates, as the adjacency buffers
+  set(p, "u_far", far_side);
+  set(p, "u_texel_scale", projection_scale(light_clip) * float(f.n) * 0.5f);
   set(p, "u_light_radius", f.fs.light_radius);
   adjacency_edge_pass(f, p, "edge distance map", EdgeTarget::Distance);
+  return true;
+}
+
+// A face of six: its far side is the scene's.
+bool edsm_soft_face(Frame& f, const glm::mat4& light_clip) {
+  const glm::vec3 c(f.s.bounds), L = glm::vec3(f.light.position) / f.light.position.w;
+  return edsm_soft_edges(f, light_clip, glm::length(c - L) + std::max(f.s.bounds.w, 1e-6f), map_reach(f));
+}
+
+}  // namespace
+
+// edsm-soft: one map of the scene's frustum (light_frame), or, for a point
+// light whose receivers need more than one frustum (light_fit.cpp), the six
+// faces of esm's and edsm's light frames (silhouette_faces.cpp).
+bool edsm_soft_passes(Frame& f) {
+  State& s = f.s;
+  f.lookup_extra = "soft_light.frag";
+  if (f.light.position.w != 0 && fit_light_frames(f, face_guard()) == 6) {
+    if (!silhouette_faces(f, edsm_soft_face, GL_RG32F)) return false;
+    f.lookup = "lookup_edsm_soft_faces.frag";
+    return true;
+  }
+  f.projection.clear(), f.faces = 0;
+  f.light_frame = light_frame(s, f.light);
+  const glm::mat4 light_clip = f.light_frame.clip();
+  // The frame's far plane, as a distance from the light (perspective) or a
+  // depth along the sun's rays (light_frame's orthographic frustum).
+  const glm::mat4& P = f.light_frame.proj;
+  const glm::vec3 c(s.bounds), L(f.light.position);
+  const float r = std::max(s.bounds.w, 1e-6f);
+  const float far_side = f.light.position.w != 0 ? P[3][2] / (P[2][2] + 1.0f)
+                                                 : glm::dot(c, -glm::normalize(L)) + (P[3][2] - 1.0f) / P[2][2] - 2 * r;
+  if (!edsm_soft_edges(f, light_clip, far_side, kMaxReach)) return false;
   finish_map(f);
   // The lookup reads each texel's comparison at its exact centre (lookup_edsm_soft.frag).
   glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(s.shadow_map.depth, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   f.second_texture = s.edge_map.color;
   f.lookup = "lookup_edsm_soft.frag";
-  f.lookup_extra = "soft_light.frag";
   return true;
 }
 
