@@ -13,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "geom/import.h"
 #include "geom/png.h"
 #include "geom/scene.h"
 #include "geom/shadow_error.h"
@@ -181,6 +182,23 @@ inline render::Platform* context() {
   }();
   return platform.get();
 }
+
+// The bundled scene (data/default_scene.gltf) and its render state, for the
+// GL tests that draw it (they link geom::import).
+class DefaultSceneTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_NE(context(), nullptr);
+    geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
+    ASSERT_TRUE(imported.ok) << imported.error;
+    scene = imported.scene;
+    std::string error;
+    state = render::create_state(scene, GEOM_SHADER_DIR, error);
+    ASSERT_TRUE(state) << error;
+  }
+  geom::Scene scene;
+  render::StatePtr state;
+};
 
 struct Comparison {
   size_t certain = 0;                            // pixels outside the reference's uncertain set

@@ -88,18 +88,22 @@ TEST(GeombenchClaims, CostIsJudgedOnTheMedian) {
 TEST(GeombenchSizeLaw, HardAndSoftTechniques) {
   using geombench::SizePoint;
   // Hard: falls by half and never steps up by more than 0.0002.
-  EXPECT_TRUE(holds(geombench::size_law_lines({{"a", "ssm", 512, 0.004}, {"a", "ssm", 1024, 0.0041},
-                                               {"a", "ssm", 4096, 0.002}})[0]));
-  EXPECT_FALSE(holds(geombench::size_law_lines({{"a", "ssm", 512, 0.004}, {"a", "ssm", 1024, 0.00421},
-                                                {"a", "ssm", 4096, 0.001}})[0]));
+  EXPECT_TRUE(holds(
+      geombench::size_law_lines({{"a", "ssm", 512, 0.004}, {"a", "ssm", 1024, 0.0041}, {"a", "ssm", 4096, 0.002}})[0]));
+  EXPECT_FALSE(holds(geombench::size_law_lines(
+      {{"a", "ssm", 512, 0.004}, {"a", "ssm", 1024, 0.00421}, {"a", "ssm", 4096, 0.001}})[0]));
   EXPECT_FALSE(holds(geombench::size_law_lines({{"a", "ssm", 512, 0.004}, {"a", "ssm", 4096, 0.0021}})[0]));
   // Soft: judged on the fraction error, no halving, 0.001 + 5% of slack.
-  EXPECT_TRUE(holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true}, {"a", "pcf-soft", 1024, 0.0209, true},
+  EXPECT_TRUE(holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true},
+                                               {"a", "pcf-soft", 1024, 0.0209, true},
                                                {"a", "pcf-soft", 4096, 0.02, true}})[0]));
-  EXPECT_FALSE(holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true}, {"a", "pcf-soft", 1024, 0.0221, true}})[0]));
-  EXPECT_TRUE(holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true}, {"a", "pcf-soft", 1024, 0.0219, true}})[0]));
+  EXPECT_FALSE(
+      holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true}, {"a", "pcf-soft", 1024, 0.0221, true}})[0]));
+  EXPECT_TRUE(
+      holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true}, {"a", "pcf-soft", 1024, 0.0219, true}})[0]));
   // A row without the figure (-1: not measured) takes no part.
-  EXPECT_TRUE(holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true}, {"a", "pcf-soft", 1024, -1, true},
+  EXPECT_TRUE(holds(geombench::size_law_lines({{"a", "pcf-soft", 512, 0.02, true},
+                                               {"a", "pcf-soft", 1024, -1, true},
                                                {"a", "pcf-soft", 2048, 0.02, true}})[0]));
 }
 

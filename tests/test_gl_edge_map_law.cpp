@@ -101,20 +101,7 @@ void check(const Tally& t, const char* what) {
   EXPECT_LE(t.sum[2], t.sum[0]) << what << ": esm-exact worse than ssm over all cases";
 }
 
-class GlEdgeMapLaw : public ::testing::Test {
- protected:
-  void SetUp() override {
-    ASSERT_NE(context(), nullptr);
-    geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
-    ASSERT_TRUE(imported.ok) << imported.error;
-    scene = imported.scene;
-    std::string error;
-    state = render::create_state(scene, GEOM_SHADER_DIR, error);
-    ASSERT_TRUE(state) << error;
-  }
-  geom::Scene scene;
-  render::StatePtr state;
-};
+class GlEdgeMapLaw : public DefaultSceneTest {};
 
 TEST_F(GlEdgeMapLaw, PointLights) { check(run_frames(*state, scene, Kind::Point, 11), "point"); }
 TEST_F(GlEdgeMapLaw, SpotLights) { check(run_frames(*state, scene, Kind::Spot, 12), "spot"); }

@@ -24,8 +24,8 @@ struct Errors {
   std::string drawn;  // what edsm-lispsm drew
 };
 
-Errors frame_errors(render::State& state, const geom::Scene& scene, const geom::Camera& view,
-                    const geom::Light& light, int size, bool with_edsm) {
+Errors frame_errors(render::State& state, const geom::Scene& scene, const geom::Camera& view, const geom::Light& light,
+                    int size, bool with_edsm) {
   Errors e;
   e.edsm_lispsm = double(render_and_compare(state, scene, view, light, Technique::EdsmLispsm, size).wrong);
   e.drawn = render::drawn_projection(state);
@@ -67,9 +67,10 @@ TEST(GlEdsmLispsm, AtMostTheSmallerOfEdsmAndLispsmOnTheAlley) {
       std::printf("alley frame %d: edsm-lispsm %.0f wrong (%s), edsm %.0f, lispsm %.0f\n", i, e.edsm_lispsm,
                   e.drawn.c_str(), e.edsm, e.lispsm);
   }
-  std::printf("alley: %d frames, within on %d (warped on %d); wrong pixels per frame: edsm-lispsm %.1f, edsm %.1f, "
-              "lispsm %.1f\n",
-              kFrames, within, warped, sum[0] / kFrames, sum[1] / kFrames, sum[2] / kFrames);
+  std::printf(
+      "alley: %d frames, within on %d (warped on %d); wrong pixels per frame: edsm-lispsm %.1f, edsm %.1f, "
+      "lispsm %.1f\n",
+      kFrames, within, warped, sum[0] / kFrames, sum[1] / kFrames, sum[2] / kFrames);
   // Most misses are a few pixels where one of the two is nearly exact; over
   // the frames edsm-lispsm has about a third of edsm's wrong pixels and a
   // quarter of lispsm's.
@@ -77,17 +78,8 @@ TEST(GlEdsmLispsm, AtMostTheSmallerOfEdsmAndLispsmOnTheAlley) {
   EXPECT_LE(2 * sum[0], std::min(sum[1], sum[2])) << "mean at most half the smaller of edsm's and lispsm's";
 }
 
-class GlEdsmLispsmDefault : public ::testing::Test {
+class GlEdsmLispsmDefault : public DefaultSceneTest {
  protected:
-  void SetUp() override {
-    ASSERT_NE(context(), nullptr);
-    geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
-    ASSERT_TRUE(imported.ok) << imported.error;
-    scene = imported.scene;
-    std::string error;
-    state = render::create_state(scene, GEOM_SHADER_DIR, error);
-    ASSERT_TRUE(state) << error;
-  }
   void run(LightKind kind, uint32_t seed, const char* what) {
     float b[4];
     render::scene_bounds(*state, b);
@@ -102,15 +94,14 @@ class GlEdsmLispsmDefault : public ::testing::Test {
       sum[0] += e.edsm_lispsm, sum[1] += e.lispsm;
       const bool ok = e.edsm_lispsm <= 1.1 * e.lispsm + 2;
       within += ok;
-      if (!ok) std::printf("%s frame %d: edsm-lispsm %.0f wrong (%s), lispsm %.0f\n", what, i, e.edsm_lispsm,
-                           e.drawn.c_str(), e.lispsm);
+      if (!ok)
+        std::printf("%s frame %d: edsm-lispsm %.0f wrong (%s), lispsm %.0f\n", what, i, e.edsm_lispsm, e.drawn.c_str(),
+                    e.lispsm);
     }
     std::printf("%s: %d frames, within on %d; wrong pixels per frame: edsm-lispsm %.1f, lispsm %.1f\n", what, kFrames,
                 within, sum[0] / kFrames, sum[1] / kFrames);
     EXPECT_GE(within, int(0.95 * kFrames)) << what;
   }
-  geom::Scene scene;
-  render::StatePtr state;
 };
 
 TEST_F(GlEdsmLispsmDefault, PointLights) { run(LightKind::Point, 11, "point"); }

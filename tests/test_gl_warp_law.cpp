@@ -74,20 +74,7 @@ void check(const Tally& t, const char* what) {
   EXPECT_GE(t.within[1], int(0.95 * kFrames)) << what << ": lispsm worse than uniform on too many frames";
 }
 
-class GlWarpLaw : public ::testing::Test {
- protected:
-  void SetUp() override {
-    ASSERT_NE(context(), nullptr);
-    geom::ImportResult imported = geom::import_file(std::string(GEOM_SOURCE_DIR) + "/data/default_scene.gltf");
-    ASSERT_TRUE(imported.ok) << imported.error;
-    scene = imported.scene;
-    std::string error;
-    state = render::create_state(scene, GEOM_SHADER_DIR, error);
-    ASSERT_TRUE(state) << error;
-  }
-  geom::Scene scene;
-  render::StatePtr state;
-};
+class GlWarpLaw : public DefaultSceneTest {};
 
 // geombench's wide-depth view: the alley seen from its open end, a sun across
 // it (Stamminger and Drettakis 2002, Fig. 1): LiSPSM's warp must be drawn and
@@ -146,10 +133,11 @@ TEST(GlWarpLawAlley, RandomFramesOfTheAlley) {
                     drawn[k].c_str(), err[0]);
     }
   }
-  std::printf("alley: %d frames; psm within on %d (warped on %d), lispsm on %d (warped on %d); mean error uniform "
-              "%.4f%%, psm %.4f%%, lispsm %.4f%%\n",
-              t.frames, t.within[0], t.warped[0], t.within[1], t.warped[1], 100 * t.sum[0] / t.frames,
-              100 * t.sum[1] / t.frames, 100 * t.sum[2] / t.frames);
+  std::printf(
+      "alley: %d frames; psm within on %d (warped on %d), lispsm on %d (warped on %d); mean error uniform "
+      "%.4f%%, psm %.4f%%, lispsm %.4f%%\n",
+      t.frames, t.within[0], t.warped[0], t.within[1], t.warped[1], 100 * t.sum[0] / t.frames,
+      100 * t.sum[1] / t.frames, 100 * t.sum[2] / t.frames);
   EXPECT_GE(t.within[0], int(0.95 * kFrames)) << "psm worse than uniform on too many frames";
   // LiSPSM warps these frames and, on the mean, halves uniform's error; on a
   // few (low suns whose long shadows lie mid-alley) its warp is worse than

@@ -261,8 +261,8 @@ bool lispsm_matrix(const Frame& fr, const FocusOptions& opt, double ease, FocusR
       V3 view = normalize(pb - pa);
       double z_centre = depth_of(fr, r_centre);
       V3 eye = pa - view * (z_centre * local);
-      warped =
-          length(view) > 0 && lispsm_warp(q, V3(0, 0, 1), eye, view, z_near * local, ease * opt.lispsm_n_scale, warp, n_used);
+      warped = length(view) > 0 &&
+               lispsm_warp(q, V3(0, 0, 1), eye, view, z_near * local, ease * opt.lispsm_n_scale, warp, n_used);
     }
     chain = warp * u;
   }
@@ -375,7 +375,8 @@ bool method_matrix(const Frame& fr, const FocusOptions& opt, FocusResult& out, M
   }
   M4 uniform;
   if (done && opt.min_warp_gain > 0 && uniform_matrix(fr, uniform) &&
-      warp_gain(fr, result, uniform, opt.method == FocusMethod::Lispsm && fr.directional) < opt.min_warp_gain && !eased_warp(fr, opt, uniform, out, result)) {
+      warp_gain(fr, result, uniform, opt.method == FocusMethod::Lispsm && fr.directional) < opt.min_warp_gain &&
+      !eased_warp(fr, opt, uniform, out, result)) {
     set_fallback(out, FocusFallback::WarpNoGain,
                  "the warp (LiSPSM's eased ones too) would resolve some visible receiver more coarsely than the "
                  "unwarped map: uniform used");

@@ -67,8 +67,8 @@ namespace {
 // there: `far_side` is that frame's far side, a distance from a point light or
 // a depth along the sun's rays (edsm_soft_edges.geom).
 bool edsm_soft_edges(Frame& f, const glm::mat4& light_clip, float far_side, float cap) {
-  GLuint p =
-      edge_program(f, light_clip, 1.5f, GL_RG32F, {"edsm_soft_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
+  GLuint p = edge_program(f, light_clip, 1.5f, GL_RG32F,
+                          {"edsm_soft_edges.vert", "edsm_soft_edges.geom", "edsm_soft_edges.frag"});
   if (!p) return false;
   set(p, "u_matrix", light_clip);
   set(p, "u_half_width", 2.0f);  // the hard edsm's

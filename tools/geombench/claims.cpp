@@ -38,8 +38,8 @@ void soft_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
         const bool met = sw <= 1.5 * ew + kSlackPixels;
         ++n, ok += met, worst = std::max(worst, sw - 1.5 * ew);
         if (!met && miss.size() < 200)
-          miss += " " + e.scene + "@" + std::to_string(e.size) + " (" + fmt("%.0f", sw) + " vs " + fmt("%.0f", ew) +
-                  " px)";
+          miss +=
+              " " + e.scene + "@" + std::to_string(e.size) + " (" + fmt("%.0f", sw) + " vs " + fmt("%.0f", ew) + " px)";
       }
     if (e.technique == "esm-soft")
       if (const Row* p = find(rows, e.scene, "pcf-soft", e.size); p && (e.scene == "pipes" || e.scene == "default"))
@@ -62,8 +62,7 @@ void soft_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
                   ": Sen et al. 2003, Sect. 5 (silhouette maps as exact as the edges they store): sssm error_cast "
                   "<= 1.5x edsm's + 2 pixels on pipes, default, scan: " +
                   std::to_string(ok) + " of " + std::to_string(n) + ", worst " + fmt("%.0f", worst) +
-                  " px over 1.5x edsm's" +
-                  (miss.empty() ? "" : "; missed:" + miss));
+                  " px over 1.5x edsm's" + (miss.empty() ? "" : "; missed:" + miss));
   if (nf)
     out.push_back(verdict(okf == nf) +
                   ": Kenzel 2013, Sect. 6 (soft edges from the edge distance): edsm-soft light-fraction error < "
@@ -147,7 +146,8 @@ void map_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
       const Row* s = find(rows, e.scene, "ssm", e.size);
       if (!s) continue;
       ++n;
-      const double wrong = wrong_pixels(e.error_visible, e.visible), ssm_wrong = wrong_pixels(s->error_visible, s->visible);
+      const double wrong = wrong_pixels(e.error_visible, e.visible),
+                   ssm_wrong = wrong_pixels(s->error_visible, s->visible);
       const bool met = wrong <= ssm_wrong + kSlackPixels;
       ok += met;
       if (!met && misses.size() < 300)
@@ -167,7 +167,8 @@ void map_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
     const char* technique;
     double bound;
   };
-  for (const CostGoal g : {CostGoal{"esm", 1.5}, CostGoal{"esm-exact", 1.5}, CostGoal{"edsm", 2}, CostGoal{"sssm", 2}}) {
+  for (const CostGoal g :
+       {CostGoal{"esm", 1.5}, CostGoal{"esm-exact", 1.5}, CostGoal{"edsm", 2}, CostGoal{"sssm", 2}}) {
     std::vector<double> q;
     std::string kind;
     for (const Row& r : rows) {
@@ -204,8 +205,8 @@ void goal_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
       const bool met = w <= 1.1 * uw + kSlackPixels;
       ++n, ok += met;
       if (!met && misses.size() < 300)
-        misses += " " + r.scene + "@" + std::to_string(r.size) + " (" + fmt("%.0f", w) + " vs " + fmt("%.0f", uw) +
-                  " px)";
+        misses +=
+            " " + r.scene + "@" + std::to_string(r.size) + " (" + fmt("%.0f", w) + " vs " + fmt("%.0f", uw) + " px)";
     }
     if (n)
       out.push_back(verdict(ok == n) + ": (this project's goal) " + t +
@@ -219,10 +220,12 @@ void goal_claims(const std::vector<Row>& rows, std::vector<std::string>& out) {
     const bool met = r.error_self <= 0.002;
     ++n, ok += met;
     if (!met && misses.size() < 400)
-      misses += " " + r.technique + " " + r.scene + "@" + std::to_string(r.size) + " (" + fmt("%.3f", 100 * r.error_self) + "%)";
+      misses += " " + r.technique + " " + r.scene + "@" + std::to_string(r.size) + " (" +
+                fmt("%.3f", 100 * r.error_self) + "%)";
   }
   if (n)
-    out.push_back(verdict(ok == n) + ": (this project's goal) every map technique error_self <= 0.2% at 1024 and above: " +
+    out.push_back(verdict(ok == n) +
+                  ": (this project's goal) every map technique error_self <= 0.2% at 1024 and above: " +
                   std::to_string(ok) + " of " + std::to_string(n) + (misses.empty() ? "" : "; missed:" + misses));
 }
 

@@ -40,7 +40,8 @@ std::vector<std::string> size_law_lines(const std::vector<SizePoint>& points) {
       }
       const auto at512 = sizes.find(512);
       const int largest = sizes.rbegin()->first;
-      if (!fraction && at512 != sizes.end() && largest > 512 && sizes.rbegin()->second > std::max(0.5 * at512->second, kNearZero)) {
+      if (!fraction && at512 != sizes.end() && largest > 512 &&
+          sizes.rbegin()->second > std::max(0.5 * at512->second, kNearZero)) {
         ok = false;
         std::snprintf(buf, sizeof buf, " %s %d not half of 512 (%.5f vs %.5f)", scene.c_str(), largest,
                       sizes.rbegin()->second, at512->second);

@@ -18,9 +18,9 @@ namespace geombench {
 
 struct SizePoint {
   std::string scene, technique;
-  int size = 0;  // 0: no map (left out)
-  double error = 0;    // error_visible, or error_fraction for a soft technique
-  bool soft = false;   // a soft technique (see above)
+  int size = 0;       // 0: no map (left out)
+  double error = 0;   // error_visible, or error_fraction for a soft technique
+  bool soft = false;  // a soft technique (see above)
 };
 
 // One verdict line per technique over all scenes ("holds: ..." / "fails: ..."),
