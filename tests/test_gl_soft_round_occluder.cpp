@@ -11,6 +11,10 @@
 //    than 0.001 + 5%, geombench's soft size law) from 512 to 4096 texels;
 //  - at every size it is below pcf-soft's (PCSS, Fernando 2005), the baseline
 //    of the same light frames.
+// And pcf-soft's reach bounded in map widths at every size (render/src/soft.cpp
+// map_reach): on geombench's colonnade under a point light behind and above
+// the camera (penumbrae wider than the reach) its light-fraction error does
+// not step up from 256 to 512 to 1024 texels.
 #include "geom/area_reference.h"
 #include "gl_fixtures.h"
 
@@ -65,6 +69,41 @@ TEST(GlSoftRoundOccluder, EdgeDistancePenumbraHoldsAsTheMapGrows) {
     if (k > 0)
       EXPECT_LE(fraction[0][k], fraction[0][k - 1] * 1.05 + 0.001) << "edsm-soft's error grows with the map";
     EXPECT_LT(fraction[0][k], fraction[1][k]) << "edsm-soft's error not below pcf-soft's";
+  }
+}
+
+TEST(GlSoftRoundOccluder, PcfSoftReachIsTheSameShareOfTheMapAtEverySize) {
+  ASSERT_NE(context(), nullptr);
+  const geom::Scene scene = colonnade();
+  std::string error;
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  const geom::Camera view = camera({0.8f, 1.7f, 2}, {0.2f, 1.5f, -40}, 60, 0.1f, 400, 320, 240);
+  const geom::Light light = point_light({1.5f, 6, 9});
+  float bounds[4];
+  render::scene_bounds(*state, bounds);
+  const float radius = 0.04f * bounds[3];
+  const auto positions = geom::positions_of(scene.positions.data(), scene.vertex_count());
+  const geom::AreaReference area =
+      geom::area_light_reference(positions, scene.indices.data(), scene.indices.size(), view, light, radius, 64);
+  ASSERT_TRUE(area.ok) << area.error;
+  const int sizes[] = {256, 512, 1024};
+  double fraction[3];
+  for (int k = 0; k < 3; ++k) {
+    render::FrameSettings fs;
+    fs.technique = Technique::PcfSoft;
+    fs.output = render::Output::Fraction;
+    fs.shadow_map_size = sizes[k];
+    fs.light_radius = radius;
+    geom::PngImage img;
+    std::vector<render::PassTime> times;
+    ASSERT_TRUE(render::render(*state, view, light, fs, img, times, error)) << error;
+    fraction[k] = geom::mean_fraction_error(img.pixels, area);
+    std::printf("pcf-soft map %d (%s): light-fraction error %.5f\n", sizes[k], render::drawn_projection(*state).c_str(),
+                fraction[k]);
+    if (k > 0)
+      EXPECT_LE(fraction[k], fraction[k - 1] * 1.05 + 0.001)
+          << "pcf-soft's error grows from " << sizes[k - 1] << " to " << sizes[k];
   }
 }
 

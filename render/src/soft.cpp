@@ -22,8 +22,11 @@ constexpr float kMaxReach = 32;  // texels: the edge quads' and the blocker sear
 
 // pcf-soft's widest reach: its search and kernel take a fixed number of taps
 // however far they reach, so it is bounded in map widths (kMaxReach texels of
-// a 512 map), not in texels: a finer map must not narrow the penumbra.
-float map_reach(const Frame& f) { return kMaxReach * std::max(1.0f, float(f.n) / 512.0f); }
+// a 512 map, 1/16 of the map at every size), not in texels: a finer map must
+// not narrow the penumbra, and a coarser one must not widen it (a wider reach
+// at 256 than at 512 made the light-fraction error step up from 256 to 512 on
+// the colonnade lit from behind and on the Quake 3 level).
+float map_reach(const Frame& f) { return kMaxReach * float(f.n) / 512.0f; }
 
 void set_soft_uniforms(Frame& f, GLuint p) {
   set(p, "u_light_proj", f.light_frame.proj);
