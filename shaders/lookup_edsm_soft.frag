@@ -8,7 +8,12 @@
 // silhouette as the widest penumbra of the frame (soft.cpp); where one of the
 // four texels holds no edge, or the receiver is not behind the edges, or a
 // texel's side of its edge disagrees with its depth comparison (crossing
-// shadows), the hard answer stands (the nearest texel's comparison).
+// shadows), the four texels' comparisons decide, bilinearly weighted (a 2 x 2
+// percentage-closer filter): one texel's comparison alone lit single pixels
+// inside the rippled sphere's terminator bands, where no map resolves the
+// tiny self-shadows (geombench heavy at 1024: light-fraction error 0.0117
+// with the nearest texel, 0.0101 so, below the hard edsm's 0.0109; behind
+// 0.0516 -> 0.0478; pipes, default and quake3 a little lower too).
 // Each texel's comparison is ssm's receiver-plane test (depth_plane.frag): the
 // receiver's plane carried to the texel's centre against the stored depth,
 // read through the comparison sampler at that exact centre (nearest filter).
@@ -40,18 +45,18 @@ float shadow_visibility(vec3 world, vec3 normal) {
   vec2 f = tc - floor(tc);
   vec4 lit;  // footprint order (0,0) (1,0) (0,1) (1,1)
   for (int k = 0; k < 4; ++k) lit[k] = texel_lit_2d(i + ivec2(k & 1, k >> 1), sample_tc, p.z, slope, size);
-  float nearest = f.y < 0.5 ? (f.x < 0.5 ? lit[0] : lit[1]) : (f.x < 0.5 ? lit[2] : lit[3]);
+  float footprint = mix(mix(lit[0], lit[1], f.x), mix(lit[2], lit[3], f.x), f.y);
   float d[4];
   float edge_depth = 0.0;
   for (int k = 0; k < 4; ++k) {
     vec2 t = texelFetch(u_distance_map, clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0).rg;
-    if (abs(t.r) > 1.0e6) return nearest;
+    if (abs(t.r) > 1.0e6) return footprint;
     d[k] = t.r;
     edge_depth = max(edge_depth, t.g);
   }
-  if (p.z <= edge_depth + 1.0e-4) return nearest;
+  if (p.z <= edge_depth + 1.0e-4) return footprint;
   for (int k = 0; k < 4; ++k)
-    if ((d[k] <= 0.0) != (lit[k] > 0.5)) return nearest;
+    if ((d[k] <= 0.0) != (lit[k] > 0.5)) return footprint;
   float dist = mix(mix(d[0], d[1], f.x), mix(d[2], d[3], f.x), f.y);
   float h = penumbra_texels(edge_depth, p.z);
   if (h < 0.5) return dist > 0.0 ? 0.0 : 1.0;  // narrower than the map resolves: the hard edge

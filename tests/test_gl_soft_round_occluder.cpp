@@ -11,6 +11,10 @@
 //    than 0.001 + 5%, geombench's soft size law) from 512 to 4096 texels;
 //  - at every size it is below pcf-soft's (PCSS, Fernando 2005), the baseline
 //    of the same light frames.
+// On geombench's rippled sphere (its terminator a band of tiny self-shadows
+// that no map resolves), edsm-soft's light fraction is closer to the area
+// reference than the hard edsm's own mask: where the edges cannot decide, the
+// footprint's bilinear comparison stands, not one texel's.
 // And pcf-soft's reach bounded in map widths at every size (render/src/soft.cpp
 // map_reach): on geombench's colonnade under a point light behind and above
 // the camera (penumbrae wider than the reach) its light-fraction error does
@@ -104,6 +108,63 @@ TEST(GlSoftRoundOccluder, PcfSoftReachIsTheSameShareOfTheMapAtEverySize) {
     if (k > 0)
       EXPECT_LE(fraction[k], fraction[k - 1] * 1.05 + 0.001)
           << "pcf-soft's error grows from " << sizes[k - 1] << " to " << sizes[k];
+  }
+}
+
+// geombench's heavy scene, coarser: a sphere of radius 1 rippled by 2% over a
+// ground (tools/geombench/scenes.cpp add_sphere), n x n quads.
+geom::Scene rippled_sphere(int n) {
+  geom::Scene s;
+  add_quad(s, {-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3});
+  const uint32_t base = uint32_t(s.vertex_count());
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double u = 2 * M_PI * (i % n) / n, v = M_PI * (0.02 + 0.96 * j / n);
+      const double r = 1 + 0.02 * std::sin(37 * u) * std::sin(23 * v);
+      const glm::vec3 p(float(r * std::cos(u) * std::sin(v)), float(1.2 + r * std::cos(v)),
+                        float(r * std::sin(u) * std::sin(v)));
+      s.positions.insert(s.positions.end(), {p.x, p.y, p.z});
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = base + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      s.indices.insert(s.indices.end(), {a, b, c, b, d, c});
+    }
+  s.sources.resize(s.triangle_count());
+  return s;
+}
+
+TEST(GlSoftRoundOccluder, EdsmSoftCloserThanItsHardAnswerOnARippledSphere) {
+  ASSERT_NE(context(), nullptr);
+  const geom::Scene scene = rippled_sphere(250);
+  std::string error;
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  const geom::Camera view = render::default_view(*state, 320, 240);
+  const geom::Light light = point_light({2, 4, 1.5f});
+  float bounds[4];
+  render::scene_bounds(*state, bounds);
+  const float radius = 0.04f * bounds[3];
+  const auto positions = geom::positions_of(scene.positions.data(), scene.vertex_count());
+  const geom::AreaReference area =
+      geom::area_light_reference(positions, scene.indices.data(), scene.indices.size(), view, light, radius, 64);
+  ASSERT_TRUE(area.ok) << area.error;
+  for (int size : {512, 1024}) {
+    double fraction[2];
+    for (int k = 0; k < 2; ++k) {
+      render::FrameSettings fs;
+      fs.technique = k ? Technique::EdsmSoft : Technique::Edsm;
+      fs.output = k ? render::Output::Fraction : render::Output::Mask;
+      fs.shadow_map_size = size;
+      fs.light_radius = radius;
+      geom::PngImage img;
+      std::vector<render::PassTime> times;
+      ASSERT_TRUE(render::render(*state, view, light, fs, img, times, error)) << error;
+      fraction[k] = geom::mean_fraction_error(img.pixels, area);
+      std::printf("%s map %d (%s): light-fraction error %.5f\n", render::technique_name(fs.technique), size,
+                  render::drawn_projection(*state).c_str(), fraction[k]);
+    }
+    EXPECT_LT(fraction[1], fraction[0]) << "edsm-soft no closer than the hard edsm at " << size;
   }
 }
 
