@@ -8,11 +8,12 @@
 // behind the nearest texel's edge depth (the occluder), gives the light
 // fraction. On esm's light frames (lookup_faces.frag: a fitted frustum or six
 // cube faces). Each texel's comparison is ssm's receiver-plane test
-// (depth_plane.frag). The hard answer (the nearest texel's comparison) stands where
-// the nearest texel holds no silhouette or the receiver is not behind its edge
-// (the paper's flags), where a texel of the footprint holds no silhouette, or
-// where a texel's side of its edge disagrees with its own depth comparison
-// (crossing shadows), as in lookup_edsm_soft.frag.
+// (depth_plane.frag). The footprint's four comparisons, bilinearly weighted,
+// decide where the nearest texel holds no silhouette or the receiver is not
+// behind its edge (the paper's flags), where a texel of the footprint holds no
+// silhouette, or where a texel's side of its edge disagrees with its own depth
+// comparison (crossing shadows), as in lookup_edsm_soft.frag (which says why
+// not one texel's comparison).
 vec4 face_clip(vec3 world, out int layer);  // lookup_faces.frag: the face and its clip position
 uniform mat4 u_face_matrix[6];              // lookup_faces.frag's
 uniform sampler2DArray u_edge_map;          // r kOffset + signed distance (texels, lit side +), b edge depth, a mask
@@ -36,16 +37,16 @@ float shadow_visibility(vec3 world, vec3 normal) {
   ivec2 i;
   vec2 f;
   const vec4 lit = footprint_lit(layer, p, slope, i, f);  // (0,0) (1,0) (0,1) (1,1)
-  float nearest = f.y < 0.5 ? (f.x < 0.5 ? lit[0] : lit[1]) : (f.x < 0.5 ? lit[2] : lit[3]);
+  float footprint = mix(mix(lit[0], lit[1], f.x), mix(lit[2], lit[3], f.x), f.y);
   ivec2 n = clamp(i + ivec2(f.x < 0.5 ? 0 : 1, f.y < 0.5 ? 0 : 1), ivec2(0), size - 1);
   vec4 tn = texelFetch(u_edge_map, ivec3(n, layer), 0);
-  if (tn.a == 0.0 || p.z <= tn.b + 1e-4) return nearest;  // no silhouette here, or the receiver is in front of it
+  if (tn.a == 0.0 || p.z <= tn.b + 1e-4) return footprint;  // no silhouette here, or the receiver is in front of it
   float e[4];
   for (int k = 0; k < 4; ++k) {
     vec4 t = texelFetch(u_edge_map, ivec3(clamp(i + ivec2(k & 1, k >> 1), ivec2(0), size - 1), layer), 0);
-    if (t.a == 0.0) return nearest;
+    if (t.a == 0.0) return footprint;
     e[k] = t.r - kOffset;
-    if ((e[k] > 0.0) != (lit[k] > 0.5)) return nearest;
+    if ((e[k] > 0.0) != (lit[k] > 0.5)) return footprint;
   }
   float dist = mix(mix(e[0], e[1], f.x), mix(e[2], e[3], f.x), f.y);  // the one dot product
   vec2 grad = vec2(mix(e[1] - e[0], e[3] - e[2], f.y), mix(e[2] - e[0], e[3] - e[1], f.x));
