@@ -71,8 +71,7 @@ TEST(GlSoftRoundOccluder, EdgeDistancePenumbraHoldsAsTheMapGrows) {
     }
   for (int k = 0; k < 4; ++k) {
     SCOPED_TRACE("map " + std::to_string(sizes[k]));
-    if (k > 0)
-      EXPECT_LE(fraction[0][k], fraction[0][k - 1] * 1.05 + 0.001) << "edsm-soft's error grows with the map";
+    if (k > 0) EXPECT_LE(fraction[0][k], fraction[0][k - 1] * 1.05 + 0.001) << "edsm-soft's error grows with the map";
     EXPECT_LT(fraction[0][k], fraction[1][k]) << "edsm-soft's error not below pcf-soft's";
   }
 }
@@ -167,8 +166,8 @@ TEST(GlSoftRoundOccluder, SoftEdgeMapsCloserThanTheirHardAnswerOnARippledSphere)
         std::printf("%s map %d (%s): light-fraction error %.5f\n", render::technique_name(fs.technique), size,
                     render::drawn_projection(*state).c_str(), fraction[k]);
       }
-      EXPECT_LT(fraction[1], fraction[0]) << render::technique_name(pair[1]) << " no closer than "
-                                          << render::technique_name(pair[0]) << " at " << size;
+      EXPECT_LT(fraction[1], fraction[0])
+          << render::technique_name(pair[1]) << " no closer than " << render::technique_name(pair[0]) << " at " << size;
     }
 }
 
