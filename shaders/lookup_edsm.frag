@@ -29,13 +29,6 @@
 //     convex corner, a strip) or inside any (OR: two occluders, a concave
 //     corner), whichever agrees with all four of the footprint's comparisons
 //     (AND first).
-//     Where all four texels hold two lines in front (a third edge near the
-//     footprint may be missing from their storage), a sample within
-//     kLineError of the deciding line is left to ssm's test: the lines place
-//     the boundary no closer than that (geombench jenga@256, 640x480, 1 frame:
-//     235 wrong pixels against ssm's 226 without it, 224 with it; jenga@1024
-//     181 -> 185, scan 563 / 229 / 88 -> 572 / 220 / 88 at 256 / 512 / 1024;
-//     applied to every step-3 answer, jenga 227 / 171 / 197).
 //  4. Neither (Sect. 5.2: the reconstruction cannot decide): ssm's own test.
 // Wherever the edges cannot decide (a texel whose side disagrees with its
 // comparison, two lines in one texel, lines that explain the footprint only
@@ -77,7 +70,6 @@ uniform usampler2DArray u_distance_map;  // RGBA32UI: (line, depth bits) x 2 per
 
 const float kPi = 3.14159265358979;
 const float kInFront = 2.0e-6;  // window depth: an edge this far in front of the receiver can shadow it
-const float kLineError = 0.27;  // texels: how far a stored line may lie from the silhouette (step 3; lookup_esm_exact.frag)
 
 float shadow_visibility(vec3 world, vec3 normal) {
   int layer;
@@ -139,7 +131,7 @@ float shadow_visibility(vec3 world, vec3 normal) {
     or_miss += or_in[k] != shadowed[k] ? 1 : 0;
   }
   if (and_miss == 0)
-    return pairs == 4 && abs(and_p) < kLineError ? ssm : and_p > 0.0 ? 0.0 : 1.0;
-  if (or_miss == 0) return pairs == 4 && abs(or_p) < kLineError ? ssm : or_p > 0.0 ? 0.0 : 1.0;
+    return and_p > 0.0 ? 0.0 : 1.0;
+  if (or_miss == 0) return or_p > 0.0 ? 0.0 : 1.0;
   return ssm;  // 4. the reconstruction cannot decide
 }
