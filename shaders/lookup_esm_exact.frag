@@ -18,8 +18,7 @@
 //    with its own comparison (crossing shadows; a receiver's outline and a
 //    caster's edge in one texel);
 //  - a receiver not behind the stored edges (its own outline);
-//  - four distances that are not those of one straight edge (one_line);
-//  - a sample within kLineError of the stored line (decide).
+//  - four distances that are not those of one straight edge (one_line).
 // The same map: a point light's six faces are ssm's (silhouette_faces.cpp).
 // The in-front rule, measured against the bilinear distance there (geombench,
 // 640x480, 1 frame, wrong pixels at 512 / 1024 / 2048 / 4096; ssm in
@@ -37,7 +36,6 @@ uniform sampler2DArray u_edge_map;  // RG32F: signed distance in texels, edge de
 const float kInFront = 2.0e-5;  // window depth: an edge this far in front of the receiver (its plane) can shadow it
 const float kLineTolerance = 0.05;  // texels: one_line's allowance for the stored distances' rounding
 const float kNearest = 0.7072;  // texels: the farthest the nearest texel's centre lies from the sample
-const float kLineError = 0.27;  // texels: how far the stored line may lie from the silhouette (decide)
 const float kPlaneMax = 1.0e-3;  // the receiver plane's reach in window depth (grazing receivers)
 
 // Whether four signed distances at the footprint's texel centres, (0,0) (1,0)
@@ -52,20 +50,16 @@ bool one_line(float d0, float d1, float d2, float d3) {
 // The edge's answer at signed distance `dist` (texels, positive on the
 // occluder's side), where it can overrule ssm's: the nearest texel's centre
 // lies within 0.707 texel of the sample, so a straight edge makes the two
-// differ only within that distance of the sample; and not within kLineError
-// of the stored line, which is one segment's line carried up to the quads'
-// reach (esm.cpp): a silhouette of segments shorter than a texel (a finely
-// tessellated curved caster: geombench's rippled sphere, 0.5-texel segments
-// at 256) bends away from it by a fraction of a texel, so close to the line
-// the edges cannot decide. geombench (640x480, 1 frame, wrong pixels at 256 /
-// 512 / 1024; ssm 2038 / 684 / 276 on heavy, 652 / 251 / 108 on scan, 226 /
-// 173 / 356 on jenga), with no band: heavy 2077 / 671 / 272, scan 639 / 241 /
-// 105, jenga 213 / 170 / 266; 0.18: heavy 2048 at 256; 0.27: heavy 2037 / 674
-// / 272, scan 644 / 244 / 105, jenga 215 / 172 / 286; 0.4: jenga 217 / 172 /
-// 321 (the band's cost: jenga's flips lie 0.1 to 0.7 texel from the line).
+// differ only within that distance of the sample. Not kept: leaving a band
+// of 0.27 texel around the stored line to ssm (one segment's line carried up
+// to the quads' reach misplaces a finely tessellated curved silhouette, the
+// rippled sphere at 256, by a fraction of a texel): heavy@256 2037 wrong
+// pixels against ssm's 2038 (2077 without), but it gave up most of the gains
+// where a texel covers many pixels (geombench 640x480: wide-depth@2048 102
+// against 21, ssm 102; colonnade@256 3558 against 1587, ssm 3671).
 float decide(float dist, float ssm) {
   const float edge = dist > 0.0 ? 0.0 : 1.0;
-  return edge == ssm || (abs(dist) <= kNearest && abs(dist) >= kLineError) ? edge : ssm;
+  return edge == ssm || abs(dist) <= kNearest ? edge : ssm;
 }
 
 float shadow_visibility(vec3 world, vec3 normal) {
