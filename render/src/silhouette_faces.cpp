@@ -55,8 +55,9 @@ void copy_depth(State& s, int n, int layer) {
 bool drawn(const glm::mat4& m) { return m != glm::mat4(0.0f); }  // an empty face's zero matrix: not drawn
 
 // Face i looks along +X -X +Y -Y +Z -Z from the light, with the guard band,
-// over the scene's bounding sphere in depth: the edge passes (esm-exact's
-// above all) are tuned to this depth range, not to the faces' fitted one.
+// over the scene's bounding sphere in depth: esm's, sssm's and the soft
+// techniques' edge passes are tuned to this depth range, not to the faces'
+// fitted one.
 glm::mat4 sphere_face(const State& s, const glm::vec3& L, int i, int n) {
   static const glm::vec3 axis[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   static const glm::vec3 up[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
@@ -66,6 +67,18 @@ glm::mat4 sphere_face(const State& s, const glm::vec3& L, int i, int n) {
   return glm::perspective(fov, 1.0f, near_plane, far_plane) * glm::lookAt(L, L + axis[i], up[i]);
 }
 
+// Whether technique t's lookup falls back to ssm's own test where its edges
+// cannot decide (shaders/lookup_edsm.frag, lookup_esm_exact.frag). Such a
+// technique draws ssm's faces (light_fit.cpp's fitted near and far), so that
+// the fallback compares the same depth map as ssm and the edges can only
+// remove ssm's errors. The scene sphere's depth range (its near plane at 1e-3
+// of the radius when the light is inside the sphere) gives a coarser depth
+// map than ssm's: ssm's test on it, geombench scan at 256 (640x480, 1 frame),
+// 687 wrong pixels against ssm's 652.
+bool ssm_faces(Technique t) {
+  return t == Technique::Edsm || t == Technique::EdsmGs || t == Technique::EdsmLispsm || t == Technique::EsmExact;
+}
+
 }  // namespace
 
 bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& light_clip), GLenum edge_format) {
@@ -73,7 +86,7 @@ bool silhouette_faces(Frame& f, bool (*draw_face)(Frame& f, const glm::mat4& lig
   const int n = f.n;
   f.faces = fit_light_frames(f, kGuard);
   if (f.faces == 1) f.face_clip[0] = f.light_frame.clip();
-  for (int i = 0; f.faces == 6 && i < 6; ++i)
+  for (int i = 0; f.faces == 6 && !ssm_faces(f.t) && i < 6; ++i)
     if (drawn(f.face_clip[i])) f.face_clip[i] = sphere_face(s, glm::vec3(f.light.position), i, n);
   ensure_arrays(s, n, f.faces, edge_format);  // before the faces: edsm's second edge pass reads its layer
   glTextureParameteri(s.face_depth, GL_TEXTURE_MIN_FILTER, GL_NEAREST);

@@ -191,8 +191,8 @@ glm::vec2 light_depth_range(const State& s, const FrameLight& light);
 // glPolygonOffset's factor of the depth maps that ssm, pcf, edsm and esm-exact
 // share: the edge passes need the offset to tell a silhouette from the surface
 // behind it, and with one map edsm's and esm-exact's fallback is exactly ssm's
-// test (edsm.cpp passes the same 2; with six faces their depth range is the
-// scene sphere's, silhouette_faces.cpp, and ssm's is fitted). The lookups add the receiver-plane test.
+// test (edsm.cpp passes the same 2; with six faces they draw ssm's fitted
+// faces, silhouette_faces.cpp). The lookups add the receiver-plane test.
 constexpr float kMapSlope = 2.0f;
 constexpr double kMaxConeDeg = 120;  // full angle of the widest single frustum worth drawing
 int fit_light_frames(Frame& f, float guard);
