@@ -20,10 +20,11 @@
 namespace render {
 namespace {
 
-constexpr GLuint kGroup = 256;                  // the compute shader's local size
-constexpr GLuint kMaxGroups = 65535;            // GL_MAX_COMPUTE_WORK_GROUP_COUNT's least value
-constexpr size_t kChunk = kGroup * kMaxGroups;  // records per dispatch and per draw
-constexpr int kPlanesUnit = 3;                  // the unit of the gathered planes
+constexpr GLuint kGroup = 64;                                  // the compute shader's local size
+constexpr GLuint kRun = 32;                                    // records per invocation (its kRun)
+constexpr GLuint kMaxGroups = 65535;                           // GL_MAX_COMPUTE_WORK_GROUP_COUNT's least value
+constexpr size_t kChunk = size_t(kGroup) * kRun * kMaxGroups;  // records per dispatch and per draw
+constexpr int kPlanesUnit = 3;                                 // the unit of the gathered planes
 constexpr GLbitfield kStorage = GL_SHADER_STORAGE_BARRIER_BIT;
 constexpr size_t kRecordBytes = 36;  // geom/esm_quads.h EsmQuad: 9 uints
 constexpr size_t kPlaneBytes = 16;   // an RGBA32F plane
@@ -47,7 +48,8 @@ void make(Buffer& buffer, size_t bytes, const void* data, GLenum usage, const ch
 }
 
 size_t chunks(size_t records) { return (records + kChunk - 1) / kChunk; }
-GLuint groups(size_t records) { return GLuint((records + kGroup - 1) / kGroup); }
+size_t runs(size_t records) { return (records + kRun - 1) / kRun; }
+GLuint groups(size_t records) { return GLuint((runs(records) + kGroup - 1) / kGroup); }
 
 // The casters' records and planes gathered (s.merged_*), unless the casters
 // are the ones gathered last.
@@ -104,8 +106,8 @@ bool find_silhouettes(Frame& f) {
   gather(s);
   const size_t records = s.merged_count, n_chunks = chunks(records);
   ensure(s.silhouette_lists, s.silhouette_list_size, 4 * std::max<size_t>(records, 1), "silhouette edges");
-  ensure(s.silhouette_groups, s.silhouette_group_size, 4 * std::max<size_t>(groups(std::min(records, kChunk)), 1),
-         "silhouette workgroup sums");
+  ensure(s.silhouette_groups, s.silhouette_group_size, 4 * std::max<size_t>(runs(std::min(records, kChunk)), 1),
+         "silhouette counts per run");
   ensure(s.silhouette_commands, s.silhouette_command_size, 16 * std::max<size_t>(n_chunks, 1), "silhouette draws");
   f.timer.begin("silhouette edges");
   // Per caster its light in its local frame and its first plane (8 floats, std430).
@@ -132,7 +134,6 @@ bool find_silhouettes(Frame& f) {
     const size_t first = k * kChunk, count = std::min(kChunk, records - first);
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_first"), GLuint(first));
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_count"), GLuint(count));
-    glProgramUniform1ui(p, glGetUniformLocation(p, "u_groups"), groups(count));
     glProgramUniform1ui(p, glGetUniformLocation(p, "u_command"), GLuint(k));
     for (int step = 0; step < 3; ++step) {
       set(p, "u_step", step);

@@ -68,7 +68,7 @@ struct State {
   // cube faces) as 2D arrays (silhouette_faces.cpp).
   Texture face_depth, face_edges;
   // edsm, sssm: the frame's silhouette edges (silhouette_edges.cpp): the list
-  // of record indices, the workgroup sums, an indirect draw per chunk.
+  // of record indices, the silhouette counts per run, an indirect draw per chunk.
   Buffer silhouette_lists, silhouette_groups, silhouette_commands;
   size_t silhouette_list_size = 0, silhouette_group_size = 0, silhouette_command_size = 0;
   // Every caster's ESM records and planes gathered into one buffer each, so
