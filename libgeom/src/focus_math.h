@@ -25,6 +25,8 @@ inline bool finite(V3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && st
 // the vertex merges of every clip call it.
 inline double max_of(double a, double b) { return a < b || a != a ? b : a; }
 inline double max_abs(V3 a) { return max_of(std::fabs(a.x), max_of(std::fabs(a.y), std::fabs(a.z))); }
+// Two points the same within eps in every coordinate.
+inline bool near_point(V3 a, V3 b, double eps) { return max_abs(a - b) <= eps; }
 // A unit vector perpendicular to unit n.
 inline V3 any_perpendicular(V3 n) {
   V3 t = std::fabs(n.x) < 0.6 ? V3(1, 0, 0) : std::fabs(n.y) < 0.6 ? V3(0, 1, 0) : V3(0, 0, 1);

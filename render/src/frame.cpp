@@ -66,7 +66,7 @@ GLuint shading_program(Frame& f) {
       set(p, ("u_face_matrix[" + std::to_string(i) + "]").c_str(), at(glm::dmat4(f.face_clip[i]), s.origin));
     set(p, "u_face_light", glm::vec3(glm::dvec3(glm::vec3(light.position)) - s.origin));
   }
-  set(p, "u_cube_bias", 0.97f);                // Gerasimov 2004, Sect. 12.3.7: fDistSquared * DepthBias
+  set(p, "u_cube_bias", 0.999f);               // rounding; the slope-scaled bias is in the map (cube.cpp)
   set(p, "u_cube_filter", 1.0f / float(f.n));  // Gerasimov 2004, Sect. 12.4: tap offsets of about one texel
   return p;
 }
