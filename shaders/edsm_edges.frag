@@ -34,9 +34,6 @@ layout(location = 0) out uvec4 o_edge;
 
 const float kPi = 3.14159265358979;
 
-const ivec2 kTaps[9] = ivec2[](ivec2(0, 0), ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0), ivec2(1, 0),
-                                 ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
-
 void main() {
   vec2 p = gl_FragCoord.xy / u_map_size * 2.0 - 1.0;
   vec2 A = f_segment.xy, ab = f_segment.zw - f_segment.xy;
@@ -61,13 +58,9 @@ void main() {
     da = min(da, 2.0 * kPi - da);
     if (abs(d1 - d) < 0.02 && da < 0.01 && abs(uintBitsToFloat(first.y) - z_edge) < 1e-4) discard;  // the same line
   }
-  // The texel under the sample first, then the other eight only while the
-  // edge is still behind every texel read: the test below passes exactly
-  // when it passes on the texels read so far (most of an edge's own side
-  // stops after one read).
   float z_far = 0.0;
-  for (int i = 0; i < 9 && z_edge > z_far + 1e-5; ++i)
-    z_far = max(z_far, texelFetch(u_depth, clamp(c + kTaps[i], ivec2(0), top), 0).r);
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(c + ivec2(x, y), ivec2(0), top), 0).r);
   if (z_edge > z_far + 1e-5) discard;
   o_edge = u_peel == 1 ? uvec4(first.xy, mine) : uvec4(mine, first.zw);
   // Priority resolved with depth: 0.85 of the edge's light depth, 0.15 of the

@@ -21,9 +21,6 @@ uniform float u_map_size;
 uniform sampler2D u_depth;  // the light's depth map, without comparison
 layout(location = 0) out vec4 o_edge;
 
-const ivec2 kTaps[9] = ivec2[](ivec2(0, 0), ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0), ivec2(1, 0),
-                                 ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
-
 void main() {
   vec2 p = gl_FragCoord.xy / u_map_size * 2.0 - 1.0;
   vec2 a = v_edge.xy, ab = v_edge.zw - v_edge.xy;
@@ -33,12 +30,8 @@ void main() {
   float d = line * u_map_size * 0.5 * sign(v_side);
   float z_far = 0.0;
   ivec2 c = ivec2(gl_FragCoord.xy), top = ivec2(u_map_size) - 1;
-  // The texel under the sample first, then the other eight only while the
-  // edge is still behind every texel read: the test below passes exactly
-  // when it passes on the texels read so far (most of an edge's own side
-  // stops after one read).
-  for (int i = 0; i < 9 && gl_FragCoord.z > z_far + 1e-5; ++i)
-    z_far = max(z_far, texelFetch(u_depth, clamp(c + kTaps[i], ivec2(0), top), 0).r);
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(c + ivec2(x, y), ivec2(0), top), 0).r);
   if (gl_FragCoord.z > z_far + 1e-5) discard;
   o_edge = vec4(clamp(0.33 + 0.17 * d / 0.707, 0.0, 1.0), 0.0, gl_FragCoord.z, 1.0);
 }

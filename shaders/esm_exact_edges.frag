@@ -29,9 +29,6 @@ uniform float u_reach;      // texels around the edge segment that are written
 uniform sampler2D u_depth;  // the light's depth map, without comparison
 layout(location = 0) out vec2 o_edge;
 
-const ivec2 kTaps[9] = ivec2[](ivec2(0, 0), ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0), ivec2(1, 0),
-                                 ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
-
 void main() {
   vec2 p = gl_FragCoord.xy / u_map_size * 2.0 - 1.0;
   vec2 a = v_edge.xy, ab = v_edge.zw - v_edge.xy;
@@ -46,12 +43,8 @@ void main() {
   float z_edge = clamp(mix(v_edge_z.x, v_edge_z.y, t) * 0.5 + 0.5, 0.0, 1.0);
   float z_far = 0.0;
   ivec2 c = ivec2(gl_FragCoord.xy), top = ivec2(u_map_size) - 1;
-  // The texel under the sample first, then the other eight only while the
-  // edge is still behind every texel read: the test below passes exactly
-  // when it passes on the texels read so far (most of an edge's own side
-  // stops after one read).
-  for (int i = 0; i < 9 && z_edge > z_far + 1e-5; ++i)
-    z_far = max(z_far, texelFetch(u_depth, clamp(c + kTaps[i], ivec2(0), top), 0).r);
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(c + ivec2(x, y), ivec2(0), top), 0).r);
   if (z_edge > z_far + 1e-5) discard;
   o_edge = vec2(d, z_edge);
   gl_FragDepth = 0.95 * z_edge + 0.05 * priority / (u_reach + 1.0);

@@ -28,9 +28,6 @@ float crossing(vec2 A, vec2 ab, vec2 c, vec2 d) {
   return (u >= 0.0 && u <= 1.0 && abs(s) <= 0.5) ? u : -1.0;
 }
 
-const ivec2 kTaps[9] = ivec2[](ivec2(0, 0), ivec2(-1, -1), ivec2(0, -1), ivec2(1, -1), ivec2(-1, 0), ivec2(1, 0),
-                                 ivec2(-1, 1), ivec2(0, 1), ivec2(1, 1));
-
 void main() {
   vec2 c = gl_FragCoord.xy;  // the cell's centre
   vec2 A = f_segment.xy, B = f_segment.zw, ab = B - A;
@@ -55,12 +52,8 @@ void main() {
   float z_edge = mix(f_depth.x, f_depth.y, u);
   float z_far = 0.0;
   ivec2 t = ivec2(floor(p + 0.5)), top = ivec2(u_map_size) - 1;  // the depth texel under the point
-  // The texel under the sample first, then the other eight only while the
-  // edge is still behind every texel read: the test below passes exactly
-  // when it passes on the texels read so far (most of an edge's own side
-  // stops after one read).
-  for (int i = 0; i < 9 && z_edge > z_far + 1e-5; ++i)
-    z_far = max(z_far, texelFetch(u_depth, clamp(t + kTaps[i], ivec2(0), top), 0).r);
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) z_far = max(z_far, texelFetch(u_depth, clamp(t + ivec2(x, y), ivec2(0), top), 0).r);
   if (z_edge > z_far + 1e-5) discard;
   // r: the offset, times 2 as two snorm16 (1 / 65534 texel); g: the edge depth's bits.
   o_point = uvec2(packSnorm2x16(clamp(2.0 * (p - c), vec2(-1.0), vec2(1.0))), floatBitsToUint(z_edge));
