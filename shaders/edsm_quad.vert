@@ -1,28 +1,27 @@
 #version 450 core
 // Edge distance shadow map (Kenzel 2013, Sect. 3.2 and 4.2.1), distance-map
-// pass without a geometry shader: the silhouette test per light runs here,
-// over the baked candidate edges (geom/esm_quads.h records: both face planes
-// of each edge, coplanar and concave edges already dropped), and a quad opens
-// only for a silhouette edge; every other record collapses outside the clip
-// volume and draws nothing. The thesis's geometry-shader path over every
-// triangle with adjacency (shaders/edsm_edges.vert + .geom, technique edsm-gs)
-// writes the same edges; the fragment shader, shaders/edsm_edges.frag, is the
-// same for both.
+// pass without a geometry shader: the silhouette edges of the light, found
+// by a compute pass over the baked candidate edges (geom/esm_quads.h records:
+// both face planes of each edge, coplanar and concave edges already dropped;
+// shaders/edsm_silhouettes.comp), each drawn as a quad. The thesis's
+// geometry-shader path over every triangle with adjacency
+// (shaders/edsm_edges.vert + .geom, technique edsm-gs) writes the same edges;
+// the fragment shader, shaders/edsm_edges.frag, is the same for both.
 //
-// Draw: the silhouette edges found by shaders/edsm_silhouettes.comp
-// (u_compact 1: glDrawArraysIndirect, its list at binding 2 from u_list_first), or
-// every record with the test here (u_compact 0: glDrawArrays(GL_TRIANGLES, 0,
-// 6 * quad_count)); no instancing either way (a
-// software rasterizer such as llvmpipe runs its vertex pipeline once per
-// instance): vertex gl_VertexID / 6 of the records, read from the shader
-// storage buffer at binding 0 as they lie (geom/esm_quads.h: 9 uints, p0,
-// p1, plane_a, plane_b, q as two snorm16), the two triangles (0 1 2) (2 1 3)
-// of the strip of corners 0..3: the screen-aligned quad of edsm_edges.geom's
-// emit_edge, u_half_width texels on each side of the segment and beyond each end.
+// Draw: the silhouette edges found by shaders/edsm_silhouettes.comp,
+// glDrawArraysIndirect with no instancing (a software rasterizer such as
+// llvmpipe runs its vertex pipeline once per instance): vertex gl_VertexID / 6
+// of its list (binding 2, from u_list_first) names a record of every caster's
+// records gathered (binding 0, as they lie: geom/esm_quads.h: 9 uints, p0,
+// p1, plane_a, plane_b, q as two snorm16), its caster (binding 4) the light
+// matrix (binding 6: each caster's local frame, geom/face_planes.h, to the
+// light's clip space); the two triangles (0 1 2) (2 1 3) of the strip of
+// corners 0..3: the screen-aligned quad of edsm_edges.geom's emit_edge,
+// u_half_width texels on each side of the segment and beyond each end.
 //
 // Silhouette (Bujnak 2004, Sect. 3.1): the light in front of one plane and
-// behind the other; a bevel or boundary edge has two records, of which exactly
-// one opens. The occluder's side: the quad's back side, along -q (the
+// behind the other, tested by the compute pass. The occluder's side: the
+// quad's back side, along -q (the
 // extrusion vector, normalize(nA + nB), points away from the faces): with the
 // clipped end points a, b (clip x, y, w, w > 0) the NDC line through them is
 // cross(a, b) / (a.w b.w), and a point moved from the edge along -q lands
@@ -32,34 +31,18 @@
 // dropped), c . (x, y, 1) the signed NDC distance, positive on the occluder's side.
 //
 // Uniforms:
-//   mat4 u_light_view_proj  local frame (geom/face_planes.h) -> light clip
-//   vec4 u_light            the light in the local frame: (x, y, z, 1) point, (x, y, z, 0) directional
-//   samplerBuffer u_planes  the records' planes (RGBA32F texture buffer)
+//   uint u_list_first               the list's first slot of this draw
 //   float u_map_size, u_half_width   texels per side, quad half width in texels
 layout(std430, binding = 0) readonly buffer Records { uint records[]; };
 layout(std430, binding = 2) readonly buffer Silhouettes { uint silhouettes[]; };
-uniform int u_compact;  // 1: vertex v draws record silhouettes[u_list_first + v / 6], a silhouette already
+layout(std430, binding = 4) readonly buffer RecordCasters { uint record_caster[]; };
+layout(std430, binding = 6) readonly buffer CasterMatrices { mat4 caster_matrix[]; };
 uniform uint u_list_first;
-
-uniform mat4 u_light_view_proj;
-uniform vec4 u_light;
-uniform samplerBuffer u_planes;
 uniform float u_map_size;
 uniform float u_half_width;
 flat out vec3 f_line;
 flat out vec4 f_segment;
 flat out vec2 f_depth;
-
-const uint kFlip = 0x80000000u;
-
-bool in_front(uint index) {
-  vec4 p = texelFetch(u_planes, int(index & 0x7fffffffu));
-  precise float s = p.x * u_light.x;
-  s = s + p.y * u_light.y;
-  s = s + p.z * u_light.z;
-  s = s + p.w * u_light.w;
-  return (s > 0.0) != ((index & kFlip) != 0u);
-}
 
 vec3 octahedral_decode(vec2 e) {
   e = max(e, vec2(-1.0));
@@ -86,13 +69,13 @@ void main() {
   f_line = vec3(0.0), f_segment = vec4(0.0), f_depth = vec2(0.0);
   gl_Position = nothing;
   const int kCorner[6] = int[](0, 1, 2, 2, 1, 3);
-  uint r = 9u * (u_compact == 1 ? silhouettes[u_list_first + uint(gl_VertexID) / 6u] : uint(gl_VertexID) / 6u);
-  if (u_compact == 0 && in_front(records[r + 6u]) == in_front(records[r + 7u])) return;
+  uint e = silhouettes[u_list_first + uint(gl_VertexID) / 6u], r = 9u * e;
+  mat4 light_view_proj = caster_matrix[record_caster[e]];  // the caster's local frame -> light clip
   vec3 p0 = uintBitsToFloat(uvec3(records[r], records[r + 1u], records[r + 2u]));
   vec3 p1 = uintBitsToFloat(uvec3(records[r + 3u], records[r + 4u], records[r + 5u]));
-  vec4 a = u_light_view_proj * vec4(p0, 1.0), b = u_light_view_proj * vec4(p1, 1.0);
+  vec4 a = light_view_proj * vec4(p0, 1.0), b = light_view_proj * vec4(p1, 1.0);
   if (!clip_near(a, b)) return;
-  vec4 mq = u_light_view_proj * vec4(octahedral_decode(unpackSnorm2x16(records[r + 8u])), 0.0);
+  vec4 mq = light_view_proj * vec4(octahedral_decode(unpackSnorm2x16(records[r + 8u])), 0.0);
   float inside = dot(cross(a.xyw, b.xyw), mq.xyw) < 0.0 ? 1.0 : -1.0;
   vec2 A = a.xy / a.w, B = b.xy / b.w;
   vec2 ab = B - A;

@@ -200,3 +200,36 @@ TEST(GlPassCounters, EdgePassesDrawOnlyTheSilhouetteOfALargeCaster) {
         e.cast_pixels);
   }
 }
+
+// Many small casters (a grid of boxes, each its own glTF node and so its own
+// caster of 12 candidate edges, over the ground and box of ground_and_box(4)):
+// the edge passes draw the silhouette edges alone here too, not every
+// candidate edge: a box's silhouette from a light outside it has at most 6
+// edges, the first caster's (the ground's 16 border edges and its box) at most
+// 22, 2 triangles each per edge pass. Drawing every caster's records, each
+// closed quad submitted, would be 2 x 12 per box.
+TEST(GlPassCounters, EdgePassesDrawOnlyTheSilhouettesOfManySmallCasters) {
+  ASSERT_NE(context(), nullptr);
+  geom::Scene scene = ground_and_box(4);
+  constexpr int kSide = 10;
+  for (int i = 0; i < kSide; ++i)
+    for (int j = 0; j < kSide; ++j) {
+      const size_t first = scene.triangle_count();
+      add_box(scene, box_at({-3.5f + 0.7f * float(i), 0.3f, -3.5f + 0.7f * float(j)}, {0.15f, 0.3f, 0.15f},
+                            float(i * 13 + j * 7)));
+      for (size_t t = first; t < scene.triangle_count(); ++t) scene.sources[t].node = uint32_t(1 + i * kSide + j);
+    }
+  std::string error;
+  auto state = render::create_state(scene, GEOM_SHADER_DIR, error);
+  ASSERT_TRUE(state) << error;
+  const uint64_t bound = 2 * (6 * kSide * kSide + 22);
+  for (const geom::Light& light : lights()) {
+    const Frame d = frame(*state, light, Technique::Edsm, 256), s = frame(*state, light, Technique::Sssm, 256);
+    ASSERT_EQ(d.projection, "fitted frustum");
+    const render::PassCounters second = passes(d, "edge distance map,"), both = passes(d, "edge distance map");
+    EXPECT_GT(second.primitives, 0u);
+    EXPECT_LE(second.primitives, bound);
+    EXPECT_EQ(both.primitives, 2 * second.primitives);  // the first and the peeled pass draw the same quads
+    EXPECT_LE(passes(s, "silhouette map").primitives, bound);
+  }
+}

@@ -40,14 +40,16 @@ void adjacency_edge_pass(Frame& f, GLuint p, const char* label, EdgeTarget targe
 // `planes_unit`), between the two.
 void draw_esm_quads(Frame& f, GLuint p, const glm::mat4& light_clip, int planes_unit = 2);
 
-// silhouette_edges.cpp: edsm's silhouette edges of the frame's light, once
-// per frame before its faces (shaders/edsm_silhouettes.comp: per caster a list
-// of the silhouette records and an indirect draw; timed as "silhouette
-// edges"); false with f.error when the shader fails.
+// silhouette_edges.cpp: edsm's and sssm's silhouette edges of the frame's
+// light, once per frame before its faces (shaders/edsm_silhouettes.comp over
+// every caster's records gathered into one buffer: one list of the silhouette
+// records and an indirect draw; timed as "silhouette edges"); false with
+// f.error when the shader fails.
 bool find_silhouettes(Frame& f);
-// Every caster's silhouette edges as edsm's edge quads (edsm_quad.vert with
-// program `p`: 6 vertices per silhouette edge; u_light_view_proj, u_light,
-// u_first, u_compact set per caster), between begin_edge_pass and end_edge_pass.
+// Every caster's silhouette edges as edge quads (program `p`: edsm_quad.vert
+// or sssm_quad.vert, 6 vertices per silhouette edge, each caster's light
+// matrix `light_clip` in its local frame; u_list_first set), one indirect
+// draw, between begin_edge_pass and end_edge_pass.
 void draw_silhouette_quads(Frame& f, GLuint p, const glm::mat4& light_clip);
 
 // esm's and esm-soft's edge pass: ESM's silhouette quads (esm_quad.vert, each

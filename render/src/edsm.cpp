@@ -49,7 +49,6 @@ bool edsm_face(Frame& f, const glm::mat4& light_clip, bool gs) {
   set(p, "u_peel", 1);
   pass("edge distance map, second edge", EdgeTarget::EdgeSecond);
   glBindTextureUnit(2, 0);
-  glBindTextureUnit(3, 0);  // the records' planes (silhouette_edges.cpp)
   return true;
 }
 

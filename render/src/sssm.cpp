@@ -30,7 +30,6 @@ bool sssm_face(Frame& f, const glm::mat4& light_clip, bool gs) {
   begin_edge_pass(f, p, "silhouette map", EdgeTarget::Silhouette);
   draw_silhouette_quads(f, p, light_clip);
   end_edge_pass(f, EdgeTarget::Silhouette);
-  glBindTextureUnit(3, 0);  // the records' planes
   return true;
 }
 

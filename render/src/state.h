@@ -67,10 +67,19 @@ struct State {
   // esm / edsm: the depth and edge maps of their faces (1 fitted frustum or 6
   // cube faces) as 2D arrays (silhouette_faces.cpp).
   Texture face_depth, face_edges;
-  // edsm: the frame's silhouette edges per caster (silhouette_edges.cpp): the
-  // lists of record indices, the workgroup sums, an indirect draw per caster.
+  // edsm, sssm: the frame's silhouette edges (silhouette_edges.cpp): the list
+  // of record indices, the silhouette counts per run, an indirect draw per chunk.
   Buffer silhouette_lists, silhouette_groups, silhouette_commands;
   size_t silhouette_list_size = 0, silhouette_group_size = 0, silhouette_command_size = 0;
+  // Every caster's ESM records and planes gathered into one buffer each, so
+  // that one dispatch finds and one draw per pass draws every caster's edges:
+  // the caster of each record, each caster's first plane, its light (per
+  // frame) and matrix (per face), and the key of the casters gathered.
+  Buffer merged_records, merged_plane_buffer, record_casters, caster_lights, caster_matrices;
+  Texture merged_planes;
+  VertexArray no_attributes;  // the edge quads read no vertex attribute
+  std::vector<GLuint> caster_plane_first;
+  size_t merged_count = 0, merged_key[3] = {0, 0, 0};
   int face_n = 0, face_layers = 0;
   GLenum face_format = 0;
   // Silhouette buffers per caster, baked on first use.
