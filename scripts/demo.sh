@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-bash scripts/build.sh
+GEOM_TARGETS="geombake geomview" bash scripts/build.sh  # the tests build with scripts/test.sh
 SCENE=${1:-data/default_scene.gltf}
 NAME=$(basename "${SCENE##*:}")
 NAME=${NAME%.*}
