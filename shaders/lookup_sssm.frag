@@ -31,10 +31,29 @@
 // 3/0/0/0/0 with scan@2048 error_visible 0.012% against 0.0046% at 1e-5;
 // pipes 0 from 256 up for all of them. Keeping the points of edges not in
 // front (the lit rule alone) gave default 65/34/10 at 256/512/1024.
+// A cell that holds no silhouette point at all (no edge crosses it, by the
+// edge pass's conservative cover) yet whose corners' comparisons differ: the
+// difference is not a silhouette's but the comparison's own (the gathered
+// comparison at the sample's depth, no receiver plane: corners along a steep
+// receiver's diagonal gradient read its own face as in front, since the map's
+// slope-scaled offset covers one axis's slope, not the sum of both), or detail
+// thinner than a texel. There the corners are compared as ssm compares them,
+// with the receiver's plane at each corner's centre (depth_plane.frag), and
+// the reconstruction below picks among those. Measured (geombench, 640x480,
+// jenga, wrong pixels at 256 / 512 / 1024 / 2048 / 4096): 929 / 1030 / 249 /
+// 9 / 9 with the gathered corners (lit faces shadowed in patches along
+// each block), 879 / 513 / 115 / 8 / 8 with this; heavy 767 / 107 / 45 / 20 /
+// 14 against 769 / 114 / 47 / 20 / 14. The plane's corners in every cell, or
+// ssm's own answer wherever its four agree (as lookup_edsm.frag), took jenga
+// to 230 / 163 at 256 / 512 but heavy to 1439 / 332 (near occluders on the
+// rippled sphere inside the map's offset, which the gathered corners catch).
 // The light frame: the fitted frustum or six cube faces (lookup_faces.frag), as edsm's.
 uniform sampler2DArrayShadow u_shadow_map;  // comparison sampler, gathered; a layer per face
 uniform usampler2DArray u_edge_map;         // RG32UI: the silhouette point (offset from the cell's centre, 2 x snorm16), edge depth bits
 vec4 face_clip(vec3 world, out int layer);
+mat4 face_matrix(int layer);
+vec3 receiver_slope(mat4 m, vec3 world, vec3 normal, vec2 size, vec3 depth_gradient);  // depth_plane.frag
+vec4 footprint_lit(int layer, vec3 p, vec3 g, out ivec2 base, out vec2 f);
 int g_layer = 0;
 
 const float kInFront = 1.0e-5;  // window depth: an edge this far in front of the receiver (its plane) can shadow it
@@ -86,6 +105,13 @@ float shadow_visibility(vec3 world, vec3 normal) {
   // The comparisons of the corners (gather order: (0,1) (1,1) (1,0) (0,0)).
   vec4 g = textureGather(u_shadow_map, vec3(p.xy, float(g_layer)), p.z);
   if (all(equal(g, vec4(g.x)))) return g.x;
+  if (texelFetch(u_edge_map, ivec3(i, g_layer), 0).g == 0u) {  // no edge crosses the cell: ssm's comparisons
+    ivec2 base;
+    vec2 f;
+    const vec3 slope = receiver_slope(face_matrix(g_layer), world, normal, vec2(size), vec3(0.0));
+    const vec4 lit = footprint_lit(g_layer, p, slope, base, f);  // (0,0) (1,0) (0,1) (1,1)
+    g = vec4(lit.z, lit.w, lit.y, lit.x);                         // gather order
+  }
   vec2 C = point_at(i, size, ivec2(0));
   vec2 P = q - C;
   float a = angle(P);
