@@ -91,6 +91,33 @@ inline void tag_caster(geom::Scene& s, size_t first, uint32_t mesh) {
   for (size_t t = first; t < s.sources.size(); ++t) s.sources[t].mesh = mesh;
 }
 
+// geombench's heavy scene (tools/geombench/scenes.cpp), coarser: a sphere of
+// radius 1 centred 1.2 over a ground of half-size 3, rippled by 2%
+// (sin 37u sin 23v), n x n quads; the ground and the sphere are two casters.
+inline geom::Scene rippled_sphere(int n) {
+  geom::Scene s;
+  add_ground(s, 3);
+  tag_caster(s, 0, 0);
+  const glm::vec3 c(0, 1.2f, 0);
+  const uint32_t base = uint32_t(s.vertex_count());
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double u = 2 * M_PI * (i % n) / n, v = M_PI * (0.02 + 0.96 * j / n);
+      const double r = 1 + 0.02 * std::sin(37 * u) * std::sin(23 * v);
+      const glm::vec3 p = c + glm::vec3(float(r * std::cos(u) * std::sin(v)), float(r * std::cos(v)),
+                                        float(r * std::sin(u) * std::sin(v)));
+      s.positions.insert(s.positions.end(), {p.x, p.y, p.z});
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = base + j * (n + 1) + i, b = a + 1, cc = a + n + 1, d = cc + 1;
+      s.indices.insert(s.indices.end(), {a, b, cc, b, d, cc});
+      s.sources.push_back({}), s.sources.push_back({});
+    }
+  tag_caster(s, 2, 1);
+  return s;
+}
+
 inline void set3(float out[3], glm::vec3 v) { out[0] = v.x, out[1] = v.y, out[2] = v.z; }
 inline glm::vec3 vec3(const float v[3]) { return glm::vec3(v[0], v[1], v[2]); }
 

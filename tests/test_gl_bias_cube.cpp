@@ -19,33 +19,6 @@ using namespace gltest;
 
 namespace {
 
-// geombench's heavy scene (tools/geombench/scenes.cpp): a ground and a sphere
-// of radius 1 on an n x n grid of latitude and longitude, its radius rippled
-// by 2% (1 + 0.02 sin(37 u) sin(23 v)), 2 n^2 triangles.
-geom::Scene rippled_sphere(int n) {
-  geom::Scene s;
-  add_ground(s, 3);
-  tag_caster(s, 0, 0);
-  const glm::vec3 c(0, 1.2f, 0);
-  const uint32_t base = uint32_t(s.vertex_count());
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double u = 2 * M_PI * (i % n) / n, v = M_PI * (0.02 + 0.96 * j / n);
-      const double r = 1 + 0.02 * std::sin(37 * u) * std::sin(23 * v);
-      const glm::vec3 p = c + glm::vec3(float(r * std::cos(u) * std::sin(v)), float(r * std::cos(v)),
-                                        float(r * std::sin(u) * std::sin(v)));
-      s.positions.insert(s.positions.end(), {p.x, p.y, p.z});
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const uint32_t a = base + j * (n + 1) + i, b = a + 1, cc = a + n + 1, d = cc + 1;
-      s.indices.insert(s.indices.end(), {a, b, cc, b, d, cc});
-      s.sources.push_back({}), s.sources.push_back({});
-    }
-  tag_caster(s, 2, 1);
-  return s;
-}
-
 // The rippled sphere's terminator under a point light: the ripples' crests
 // shadow their troughs at grazing incidence, gaps thinner than a fixed share
 // of the distance. error_self halves as the map doubles from 1024 to 4096

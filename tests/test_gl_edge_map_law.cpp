@@ -103,31 +103,6 @@ void check(const Tally& t, const char* what) {
 
 class GlEdgeMapLaw : public DefaultSceneTest {};
 
-// A rippled sphere on a ground (geombench's heavy scene at a coarser
-// tessellation: radius 1 with ripples of 2%, `n` segments around) and a point
-// light over it close enough that the receivers need six faces.
-geom::Scene rippled_sphere(int n) {
-  geom::Scene s;
-  add_ground(s, 3);
-  const uint32_t base = uint32_t(s.vertex_count());
-  const glm::vec3 c(0, 1.2f, 0);
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double u = 2 * M_PI * (i % n) / n, v = M_PI * (0.02 + 0.96 * j / n);
-      const double r = 1 + 0.02 * std::sin(37 * u) * std::sin(23 * v);
-      const glm::vec3 p = c + glm::vec3(float(r * std::cos(u) * std::sin(v)), float(r * std::cos(v)),
-                                        float(r * std::sin(u) * std::sin(v)));
-      s.positions.insert(s.positions.end(), {p.x, p.y, p.z});
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const uint32_t a = base + j * (n + 1) + i, b = a + 1, cc = a + n + 1, d = cc + 1;
-      s.indices.insert(s.indices.end(), {a, b, cc, b, d, cc});
-      s.sources.push_back({}), s.sources.push_back({});
-    }
-  return s;
-}
-
 // Six faces for a point light: edsm and esm-exact draw ssm's faces, so their
 // fallback is ssm's test on the same depth map. edsm is within ssm + 2 pixels
 // on every case, esm-exact on all but four (frames where the stored line of a

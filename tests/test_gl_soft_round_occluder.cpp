@@ -111,29 +111,6 @@ TEST(GlSoftRoundOccluder, PcfSoftReachIsTheSameShareOfTheMapAtEverySize) {
   }
 }
 
-// geombench's heavy scene, coarser: a sphere of radius 1 rippled by 2% over a
-// ground (tools/geombench/scenes.cpp add_sphere), n x n quads.
-geom::Scene rippled_sphere(int n) {
-  geom::Scene s;
-  add_quad(s, {-3, 0, -3}, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3});
-  const uint32_t base = uint32_t(s.vertex_count());
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double u = 2 * M_PI * (i % n) / n, v = M_PI * (0.02 + 0.96 * j / n);
-      const double r = 1 + 0.02 * std::sin(37 * u) * std::sin(23 * v);
-      const glm::vec3 p(float(r * std::cos(u) * std::sin(v)), float(1.2 + r * std::cos(v)),
-                        float(r * std::sin(u) * std::sin(v)));
-      s.positions.insert(s.positions.end(), {p.x, p.y, p.z});
-    }
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const uint32_t a = base + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      s.indices.insert(s.indices.end(), {a, b, c, b, d, c});
-    }
-  s.sources.resize(s.triangle_count());
-  return s;
-}
-
 TEST(GlSoftRoundOccluder, SoftEdgeMapsCloserThanTheirHardAnswerOnARippledSphere) {
   ASSERT_NE(context(), nullptr);
   const geom::Scene scene = rippled_sphere(250);
